@@ -1,0 +1,11 @@
+# Every library comes from a Debian package (see README "Dependencies"); nothing is vendored.
+find_package(Vulkan REQUIRED COMPONENTS glslangValidator)
+find_package(glm REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(tinyexr REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)   # libstb-dev: headers under <stb/...> + libstb
+find_package(Threads REQUIRED)
+if(VKPATH_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()

@@ -1,0 +1,55 @@
+// Flattening: the build tree -> the GPU layout (GpuNode, GpuPrim of shared/gpu_types.h). This is
+// the only host code that knows how a GpuNode is laid out.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bvh/build.h"
+#include "scene/scene.h"
+#include "shared/gpu_types.h"
+
+namespace vkp {
+
+/// Numbers describing a flattened BVH.
+struct BvhStats {
+    std::size_t primCount = 0;
+    std::size_t nodeCount = 0;  ///< GpuNodes (each holds two child boxes); >= 1
+    std::size_t leafCount = 0;  ///< non-empty leaves (child slots with a primitive count)
+    std::uint32_t maxDepth = 0;   ///< deepest leaf; the root node is depth 0, its children depth 1
+    /// SAH cost with Ct = Ci = 1: sum over GpuNodes of A(node)/A(root) + sum over leaves of
+    /// A(leaf)/A(root) * count, A = surface area (ratios taken as 1 when A(root) = 0).
+    double sahCost = 0.0;
+    double buildMs = 0.0;    ///< wall time of buildBvh (milliseconds)
+    double flattenMs = 0.0;  ///< wall time of flattening and packing (milliseconds)
+};
+
+/// A BVH in the GPU layout. nodes[0] is the root; inner children come after their parent
+/// (depth-first, left child first, so a left inner child is parent + 1); each leaf is the
+/// contiguous range [first, first + count) of prims. primToShape[i] is the Scene::shapes index of
+/// prims[i].
+struct FlatBvh {
+    std::vector<gpu::GpuNode> nodes;
+    std::vector<gpu::GpuPrim> prims;
+    std::vector<std::uint32_t> primToShape;
+    BvhStats stats;
+};
+
+/// Pack one shape: header = kind | material << 2 (p0.w bits), sphere radius in p1.w, triangle
+/// edges e1 = v1 - v0 and e2 = v2 - v0, p2.w = bits of lightPlusOne (light index + 1, 0 = none).
+gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne);
+
+/// Flatten a build tree over scene.shapes (tree built from those shapes in that order). A tree
+/// whose root is a leaf (0 or 1 primitive) becomes one GpuNode whose unused child slot is empty
+/// (GPU_NODE_EMPTY, inverted box). Throws InputError on a material index >= 2^30 or a light index
+/// that is not a shape; std::invalid_argument when the tree does not match the shapes.
+FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene);
+
+/// Build (binned SAH, buildBvh) and flatten the scene's shapes; fills stats including times.
+/// Throws InputError (one line, naming scene.path and the shape) on non-finite shape data.
+FlatBvh buildFlatBvh(const Scene& scene, const BvhBuildOptions& options = {});
+
+/// SAH cost of a build tree as defined in BvhStats::sahCost (the flat root counted once).
+double sahCost(const BvhBuildTree& tree, float traversalCost = 1.0f, float intersectionCost = 1.0f);
+
+}  // namespace vkp

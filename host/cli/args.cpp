@@ -1,0 +1,124 @@
+#include "cli/args.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace vkp {
+
+namespace {
+[[noreturn]] void usage(const std::string& what) { throw InputError("usage: " + what + " (see 'vkpath --help')"); }
+
+std::uint32_t parseUint(const std::string& flag, const std::string& v, std::uint32_t min, std::uint32_t max) {
+    std::uint64_t x = 0;
+    auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+    if (ec != std::errc() || p != v.data() + v.size() || x < min || x > max)
+        usage(flag + " wants a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" + v + "'");
+    return std::uint32_t(x);
+}
+
+double parseDouble(const std::string& flag, const std::string& v, double min, double max) {
+    double x = 0;
+    auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+    if (ec != std::errc() || p != v.data() + v.size() || !std::isfinite(x) || x < min || x > max)
+        usage(flag + " wants a number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" + v + "'");
+    return x;
+}
+}  // namespace
+
+const char* usageText() {
+    return R"(vkpath: a headless path tracer on Vulkan compute
+
+usage:
+  vkpath render SCENE.json [options]   render a scene (default output: SCENE's name .png)
+  vkpath info SCENE.json               primitives, lights, BVH statistics, shader variant
+  vkpath devices [--validate]          list Vulkan devices and why any is unusable
+  vkpath --help | --version
+
+render options:
+  -o FILE                 output image, repeatable; format by extension: .png .exr .pfm .hdr
+  --spp N                 samples per pixel (overrides the scene)
+  --time SECONDS          stop after this much wall time (whichever of --spp/--time comes first)
+  --width N, --height N   image size (override the scene)
+  --max-depth N           path length cap      --seed N   random seed
+  --sampler S             bsdf | light | mixture (default: mixture, the book's)
+  --variant V             auto (default: compile in only what the scene needs) | full
+  --device SEL            device index or name substring (default: the most capable)
+  --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
+  --exposure EV           exposure in stops for PNG output (default 0)
+  --dump-every N          write the image every N spp into --dump-dir (default ./frames)
+  --dump-dir DIR          folder of progressive frames: frame-<spp>.png
+  --dump-format F         also dump exr or pfm (repeatable)
+  --samples-per-dispatch N  samples one dispatch adds per pixel (default 1)
+  --quiet                 no progress output
+
+exit codes: 0 success, 1 bad input or usage, 2 no usable Vulkan device, 3 Vulkan failure
+)";
+}
+
+CliArgs parseArgs(const std::vector<std::string>& args) {
+    CliArgs a;
+    if (args.empty()) return a;
+    std::size_t i = 0;
+    const std::string cmd = args[i++];
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") return a;
+    if (cmd == "--version") {
+        a.command = Command::Version;
+        return a;
+    }
+    if (cmd == "render") a.command = Command::Render;
+    else if (cmd == "info") a.command = Command::Info;
+    else if (cmd == "devices") a.command = Command::Devices;
+    else usage("unknown command '" + cmd + "'");
+
+    auto value = [&](const std::string& flag) -> std::string {
+        if (i >= args.size()) usage(flag + " needs a value");
+        return args[i++];
+    };
+    bool renderOnly = false;
+    while (i < args.size()) {
+        const std::string f = args[i++];
+        if (f == "--validate") { a.validate = true; continue; }
+        if (f == "--device") { a.device = value(f); continue; }
+        if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
+        if (!f.empty() && f[0] == '-' && f != "-") {
+            renderOnly = true;
+            if (f == "-o") a.outputs.emplace_back(value(f));
+            else if (f == "--spp") a.spp = parseUint(f, value(f), 1, 1u << 24);
+            else if (f == "--time") a.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
+            else if (f == "--width") a.width = parseUint(f, value(f), 1, 16384);
+            else if (f == "--height") a.height = parseUint(f, value(f), 1, 16384);
+            else if (f == "--max-depth") a.maxDepth = parseUint(f, value(f), 1, 1024);
+            else if (f == "--seed") a.seed = parseUint(f, value(f), 0, 0xffffffffu);
+            else if (f == "--sampler") {
+                const std::string s = value(f);
+                if (!parseSampler(s, a.sampler)) usage("--sampler must be bsdf, light or mixture, got '" + s + "'");
+            } else if (f == "--variant") {
+                const std::string v = value(f);
+                if (v == "full") a.fullVariant = true;
+                else if (v != "auto") usage("--variant must be auto or full, got '" + v + "'");
+            } else if (f == "--exposure") a.exposure = parseDouble(f, value(f), -64, 64);
+            else if (f == "--dump-every") a.dumpEvery = parseUint(f, value(f), 1, 1u << 24);
+            else if (f == "--dump-dir") a.dumpDir = value(f);
+            else if (f == "--dump-format") {
+                const std::string v = value(f);
+                if (v == "exr") a.dumpFormats.push_back(ImageFormat::Exr);
+                else if (v == "pfm") a.dumpFormats.push_back(ImageFormat::Pfm);
+                else if (v == "hdr") a.dumpFormats.push_back(ImageFormat::Hdr);
+                else if (v != "png") usage("--dump-format must be exr, pfm, hdr or png, got '" + v + "'");
+            } else if (f == "--samples-per-dispatch") a.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            else if (f == "--quiet" || f == "-q") a.quiet = true;
+            else usage("unknown option '" + f + "'");
+            continue;
+        }
+        if (!a.scene.empty() || a.command == Command::Devices) usage("unexpected argument '" + f + "'");
+        a.scene = f;
+    }
+    if ((a.command == Command::Render || a.command == Command::Info) && a.scene.empty())
+        usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
+    if (renderOnly && a.command != Command::Render) usage("render options are only valid with 'vkpath render'");
+    return a;
+}
+
+}  // namespace vkp

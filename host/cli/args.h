@@ -1,0 +1,40 @@
+// Command-line parsing for `vkpath`. Pure: no files are touched, no device is opened.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+#include "render/features.h"
+
+namespace vkp {
+
+enum class Command { Help, Version, Render, Info, Devices };
+
+struct CliArgs {
+    Command command = Command::Help;
+    std::filesystem::path scene;
+    std::vector<std::filesystem::path> outputs;  // -o, repeatable
+    std::optional<std::uint32_t> spp, width, height, maxDepth, seed;
+    double timeLimit = 0.0;                      // --time SECONDS (0: none)
+    Sampler sampler = Sampler::Mixture;
+    bool fullVariant = false;                    // --variant full
+    std::string device;                          // --device N | NAME-SUBSTRING
+    bool validate = false;
+    double exposure = 0.0;
+    std::uint32_t dumpEvery = 0;
+    std::filesystem::path dumpDir = "frames";
+    std::vector<ImageFormat> dumpFormats{ImageFormat::Png};
+    bool quiet = false;
+    std::uint32_t samplesPerDispatch = 1;
+};
+
+/// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.
+CliArgs parseArgs(const std::vector<std::string>& args);
+
+/// The text of `vkpath --help`.
+const char* usageText();
+
+}  // namespace vkp

@@ -1,0 +1,146 @@
+// OpenEXR through tinyexr (Debian's libtinyexr; the implementation lives in the shared library).
+// EXR stores channels sorted by name (B, G, R) and scanlines top to bottom (y grows downwards).
+#include <tinyexr.h>
+
+#include <array>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <ostream>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/image_formats.h"
+
+namespace vkp::detail {
+namespace {
+
+/// Owns the error string tinyexr may allocate.
+struct ExrError {
+    const char* msg = nullptr;
+    ~ExrError() {
+        if (msg) FreeEXRErrorMessage(msg);
+    }
+    std::string text(int code) const {
+        return (msg ? std::string(msg) : std::string("error")) + " (tinyexr code " + std::to_string(code) + ")";
+    }
+};
+
+[[noreturn]] void fail(const std::string& name, const std::string& what) { throw InputError(name + ": " + what); }
+
+struct HeaderGuard {
+    EXRHeader h;
+    HeaderGuard() { InitEXRHeader(&h); }
+    ~HeaderGuard() { FreeEXRHeader(&h); }
+};
+
+struct ImageGuard {
+    EXRImage i;
+    ImageGuard() { InitEXRImage(&i); }
+    ~ImageGuard() { FreeEXRImage(&i); }
+};
+
+}  // namespace
+
+void encodeExr(const Image& image, std::ostream& out, const std::string& name) {
+    const size_t n = image.pixelCount();
+    // Planar channels in the order EXR lists them (alphabetical): B, G, R.
+    std::array<std::vector<float>, 3> planes;
+    for (int c = 0; c < 3; ++c) {
+        planes[size_t(c)].resize(n);
+        for (size_t i = 0; i < n; ++i) planes[size_t(c)][i] = image.rgb[3 * i + size_t(2 - c)];
+    }
+    std::array<unsigned char*, 3> planePtrs{};
+    for (size_t c = 0; c < 3; ++c) planePtrs[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+
+    std::array<EXRChannelInfo, 3> channels{};
+    const char* names[3] = {"B", "G", "R"};
+    for (size_t c = 0; c < 3; ++c) std::strcpy(channels[c].name, names[c]);
+    std::array<int, 3> pixelTypes{TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+    std::array<int, 3> requestedTypes = pixelTypes;  // stored as 32-bit float, no conversion to half
+
+    // Not HeaderGuard/ImageGuard: the arrays belong to us, FreeEXR* must not free them.
+    EXRHeader header;
+    InitEXRHeader(&header);
+    header.num_channels = 3;
+    header.channels = channels.data();
+    header.pixel_types = pixelTypes.data();
+    header.requested_pixel_types = requestedTypes.data();
+    header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;  // lossless
+
+    EXRImage exr;
+    InitEXRImage(&exr);
+    exr.num_channels = 3;
+    exr.images = planePtrs.data();
+    exr.width = int(image.width);
+    exr.height = int(image.height);
+
+    unsigned char* memory = nullptr;
+    ExrError err;
+    const size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err.msg);
+    if (size == 0 || memory == nullptr) {
+        std::free(memory);
+        throw InputError(name + ": cannot encode EXR: " + err.text(0));
+    }
+    out.write(reinterpret_cast<const char*>(memory), std::streamsize(size));
+    std::free(memory);  // tinyexr allocates with malloc
+}
+
+Image decodeExr(std::span<const uint8_t> bytes, const std::string& name) {
+    EXRVersion version;
+    int ret = ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size());
+    if (ret != TINYEXR_SUCCESS) fail(name, "not an OpenEXR file (bad or missing magic number/version)");
+    if (version.multipart || version.non_image) fail(name, "multi-part and deep EXR files are not supported");
+    if (version.tiled) fail(name, "tiled EXR files are not supported");
+
+    HeaderGuard header;
+    ExrError err;
+    ret = ParseEXRHeaderFromMemory(&header.h, &version, bytes.data(), bytes.size(), &err.msg);
+    if (ret != TINYEXR_SUCCESS) fail(name, "invalid or truncated EXR header: " + err.text(ret));
+
+    // Channel index for R, G, B; a single channel (e.g. Y) is read as gray.
+    std::array<int, 3> index{-1, -1, -1};
+    for (int c = 0; c < header.h.num_channels; ++c) {
+        const std::string channel = header.h.channels[c].name;
+        if (channel == "R") index[0] = c;
+        if (channel == "G") index[1] = c;
+        if (channel == "B") index[2] = c;
+    }
+    if (header.h.num_channels == 1) index = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+        if (index[size_t(k)] < 0) fail(name, std::string("EXR file has no '") + "RGB"[k] + "' channel");
+        const int type = header.h.pixel_types[index[size_t(k)]];
+        if (type != TINYEXR_PIXELTYPE_HALF && type != TINYEXR_PIXELTYPE_FLOAT) {
+            fail(name, std::string("EXR channel '") + header.h.channels[index[size_t(k)]].name +
+                 "' is not of type half or float");
+        }
+    }
+    for (int c = 0; c < header.h.num_channels; ++c) {
+        if (header.h.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) {
+            header.h.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+        }
+    }
+
+    ImageGuard exr;
+    // tinyexr 1.0.1 frees the image itself when decoding fails, but sets num_channels only on
+    // success and leaves the pointers dangling: preset num_channels so it frees every channel
+    // array, and forget the pointers afterwards so ~ImageGuard does not free them twice.
+    exr.i.num_channels = header.h.num_channels;
+    ret = LoadEXRImageFromMemory(&exr.i, &header.h, bytes.data(), bytes.size(), &err.msg);
+    if (ret != TINYEXR_SUCCESS) {
+        InitEXRImage(&exr.i);
+        fail(name, "invalid or truncated EXR pixel data: " + err.text(ret));
+    }
+    if (exr.i.width <= 0 || exr.i.height <= 0 || exr.i.images == nullptr) fail(name, "EXR file has no pixels");
+
+    Image image{uint32_t(exr.i.width), uint32_t(exr.i.height)};
+    const size_t n = image.pixelCount();
+    for (size_t k = 0; k < 3; ++k) {
+        const float* plane = reinterpret_cast<const float*>(exr.i.images[index[k]]);
+        if (plane == nullptr) fail(name, "EXR file has no pixels");
+        for (size_t i = 0; i < n; ++i) image.rgb[3 * i + k] = plane[i];
+    }
+    return image;
+}
+
+}  // namespace vkp::detail

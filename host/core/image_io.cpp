@@ -1,0 +1,137 @@
+#include "core/image_io.h"
+
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "core/image_formats.h"
+#include "core/tonemap.h"
+
+namespace vkp {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kSupported = "supported: .png .exr .pfm .hdr";
+
+void writeToStream(void* context, void* data, int size) {
+    static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
+}
+
+/// stb and tinyexr index pixels and bytes with int.
+void checkIntSized(const Image& image, const std::string& name, const char* format) {
+    if (image.pixelCount() > size_t(INT_MAX) / 16) {
+        throw InputError(name + ": image " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                         " is too large for " + format);
+    }
+}
+
+void encodePng(const Image& image, const WriteOptions& options, std::ostream& out, const std::string& name) {
+    const std::vector<uint8_t> srgb = toSrgb8(image, options.exposure);
+    const int w = int(image.width), h = int(image.height);
+    if (!stbi_write_png_to_func(writeToStream, &out, w, h, 3, srgb.data(), 3 * w)) {
+        throw InputError(name + ": cannot encode PNG");
+    }
+}
+
+std::vector<uint8_t> readFileBytes(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (!fs::exists(st)) throw InputError(path.string() + ": file not found");
+    if (!fs::is_regular_file(st)) throw InputError(path.string() + ": not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        const int err = errno;
+        throw InputError(path.string() + ": cannot open: " + std::error_code(err, std::generic_category()).message());
+    }
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path.string() + ": read error");
+    return bytes;
+}
+
+}  // namespace
+
+ImageFormat imageFormatFromPath(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".png") return ImageFormat::Png;
+    if (ext == ".exr") return ImageFormat::Exr;
+    if (ext == ".pfm") return ImageFormat::Pfm;
+    if (ext == ".hdr") return ImageFormat::Hdr;
+    if (ext.empty()) throw InputError(path.string() + ": no image file extension (" + kSupported + ")");
+    throw InputError(path.string() + ": unknown image extension '" + path.extension().string() + "' (" +
+                     kSupported + ")");
+}
+
+const char* imageFormatExtension(ImageFormat format) {
+    switch (format) {
+        case ImageFormat::Png: return ".png";
+        case ImageFormat::Exr: return ".exr";
+        case ImageFormat::Pfm: return ".pfm";
+        case ImageFormat::Hdr: return ".hdr";
+    }
+    return "";
+}
+
+void encodeImage(const Image& image, ImageFormat format, const WriteOptions& options, std::ostream& out,
+                 const std::string& name) {
+    image.checkConsistent();
+    if (image.empty()) throw std::invalid_argument(name + ": cannot write an empty image");
+    switch (format) {
+        case ImageFormat::Png:
+            checkIntSized(image, name, "PNG");
+            encodePng(image, options, out, name);
+            return;
+        case ImageFormat::Exr:
+            checkIntSized(image, name, "EXR");
+            detail::encodeExr(image, out, name);
+            return;
+        case ImageFormat::Pfm: detail::encodePfm(image, out); return;
+        case ImageFormat::Hdr:
+            checkIntSized(image, name, "Radiance HDR");
+            detail::encodeHdr(image, out, name);
+            return;
+    }
+}
+
+void writeImage(const Image& image, const fs::path& path, const WriteOptions& options) {
+    const ImageFormat format = imageFormatFromPath(path);
+    writeFileAtomic(path, [&](std::ostream& out) { encodeImage(image, format, options, out, path.string()); });
+}
+
+void checkOutputPath(const fs::path& path) {
+    (void)imageFormatFromPath(path);
+    checkCanCreateFile(path);
+}
+
+Image decodeImage(std::span<const uint8_t> bytes, ImageFormat format, const std::string& name) {
+    switch (format) {
+        case ImageFormat::Pfm: return detail::decodePfm(bytes, name);
+        case ImageFormat::Exr: return detail::decodeExr(bytes, name);
+        case ImageFormat::Hdr: return detail::decodeHdr(bytes, name);
+        case ImageFormat::Png: break;
+    }
+    throw InputError(name + ": reading PNG is not supported (it is display-encoded; use .exr, .pfm or .hdr)");
+}
+
+Image readImage(const fs::path& path) {
+    const ImageFormat format = imageFormatFromPath(path);
+    if (format == ImageFormat::Png) return decodeImage({}, format, path.string());  // throws
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    return decodeImage(bytes, format, path.string());
+}
+
+}  // namespace vkp

@@ -1,0 +1,70 @@
+#include "render/features.h"
+
+namespace vkp {
+
+const char* samplerName(Sampler s) {
+    switch (s) {
+        case Sampler::Bsdf: return "bsdf";
+        case Sampler::Light: return "light";
+        default: return "mixture";
+    }
+}
+
+bool parseSampler(const std::string& name, Sampler& out) {
+    if (name == "bsdf") out = Sampler::Bsdf;
+    else if (name == "light") out = Sampler::Light;
+    else if (name == "mixture") out = Sampler::Mixture;
+    else return false;
+    return true;
+}
+
+std::vector<std::uint32_t> Features::specConstants() const {
+    return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
+            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus};
+}
+
+std::string Features::name() const {
+    std::string prims, mats, lights;
+    auto add = [](std::string& s, bool on, const char* what) {
+        if (on) s += (s.empty() ? "" : "+") + std::string(what);
+    };
+    add(prims, spheres, "sphere");
+    add(prims, parallelograms, "quad/triangle");
+    add(mats, lambertian, "lambertian");
+    add(mats, metal, "metal");
+    add(mats, dielectric, "dielectric");
+    add(mats, emitters, "emission");
+    add(lights, sphereLights, "sphere");
+    add(lights, parallelogramLights, "quad/triangle");
+    return "prims:" + (prims.empty() ? std::string("none") : prims) + " materials:" + (mats.empty() ? std::string("none") : mats) +
+           " lights:" + (lights.empty() ? std::string("none") : lights) + " sampler:" + samplerName(sampler) +
+           (defocus ? " defocus" : "");
+}
+
+Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
+    Features f;
+    f.sampler = sampler;
+    if (full) {
+        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = true;
+        f.sphereLights = f.parallelogramLights = f.defocus = true;
+        return f;
+    }
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const Shape& s : scene.shapes) {
+        (s.type == ShapeType::Sphere ? f.spheres : f.parallelograms) = true;
+        used[s.material] = true;
+        if (s.sampled) (s.type == ShapeType::Sphere ? f.sphereLights : f.parallelogramLights) = true;
+    }
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& m = scene.materials[i];
+        f.lambertian |= m.type == MaterialType::Lambertian;
+        f.metal |= m.type == MaterialType::Metal;
+        f.dielectric |= m.type == MaterialType::Dielectric;
+        f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
+    }
+    f.defocus = scene.camera.defocusAngle > 0.0f;
+    return f;
+}
+
+}  // namespace vkp

@@ -1,0 +1,34 @@
+// The shader variant a scene needs: which primitive, material and light kinds its pipeline
+// compiles in (specialization constants of shaders/lib/bindings.glsl, in the same order).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace vkp {
+
+enum class Sampler : std::uint32_t { Bsdf = 0, Light = 1, Mixture = 2 };
+const char* samplerName(Sampler s);
+/// "bsdf" | "light" | "mixture" -> Sampler; false if unknown.
+bool parseSampler(const std::string& name, Sampler& out);
+
+struct Features {
+    bool spheres = false, parallelograms = false;  ///< primitive kinds present
+    bool lambertian = false, metal = false, dielectric = false, emitters = false;
+    bool sphereLights = false, parallelogramLights = false;  ///< kinds in the light list
+    bool defocus = false;
+    Sampler sampler = Sampler::Mixture;
+
+    /// Values for constant_id 0..9, in the order of shaders/lib/bindings.glsl.
+    std::vector<std::uint32_t> specConstants() const;
+    /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
+    std::string name() const;
+};
+
+/// The variant for `scene` rendered with `sampler`. `full` compiles in everything (the comparison
+/// pipeline of `--variant full`).
+Features sceneFeatures(const Scene& scene, Sampler sampler, bool full = false);
+
+}  // namespace vkp

@@ -1,0 +1,75 @@
+#include "render/gpu_scene.h"
+
+#include <bit>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+namespace vkp {
+
+namespace {
+glm::vec4 v4(glm::vec3 v, float w = 0.0f) { return glm::vec4(v, w); }
+float bitsf(std::uint32_t u) { return std::bit_cast<float>(u); }
+}  // namespace
+
+void packCamera(const Camera& cam, gpu::GpuFrame& frame) {
+    const float theta = glm::radians(cam.vfov);
+    const float h = std::tan(theta / 2.0f);
+    const float viewportH = 2.0f * h * cam.focusDist;
+    const float viewportW = viewportH * (float(cam.width) / float(cam.height));
+    const glm::vec3 w = glm::normalize(cam.lookfrom - cam.lookat);
+    const glm::vec3 u = glm::normalize(glm::cross(cam.vup, w));
+    const glm::vec3 v = glm::cross(w, u);
+    const glm::vec3 viewportU = viewportW * u;
+    const glm::vec3 viewportV = -viewportH * v;
+    const glm::vec3 du = viewportU / float(cam.width);
+    const glm::vec3 dv = viewportV / float(cam.height);
+    const glm::vec3 upperLeft = cam.lookfrom - cam.focusDist * w - viewportU / 2.0f - viewportV / 2.0f;
+    const float defocusRadius = cam.focusDist * std::tan(glm::radians(cam.defocusAngle / 2.0f));
+    frame.origin = v4(cam.lookfrom);
+    frame.pixel00 = v4(upperLeft + 0.5f * (du + dv));
+    frame.pixelDu = v4(du);
+    frame.pixelDv = v4(dv);
+    frame.defocusU = v4(u * defocusRadius);
+    frame.defocusV = v4(v * defocusRadius);
+}
+
+gpu::GpuFrame packFrame(const Scene& scene, std::uint32_t primCount, std::uint32_t nodeCount) {
+    gpu::GpuFrame f{};
+    packCamera(scene.camera, f);
+    f.background = v4(scene.render.background);
+    f.size = glm::uvec4(scene.camera.width, scene.camera.height, scene.render.maxDepth, scene.render.seed);
+    constexpr std::uint32_t kRouletteStart = 3;  // bounces before Russian roulette may end a path
+    f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), kRouletteStart, primCount, nodeCount);
+    return f;
+}
+
+std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials) {
+    std::vector<gpu::GpuMaterial> out;
+    out.reserve(materials.size());
+    for (const Material& m : materials) {
+        std::uint32_t flags = std::uint32_t(m.type);
+        if (m.twoSided) flags |= gpu::MATF_TWO_SIDED;
+        if (m.fresnelExact) flags |= gpu::MATF_FRESNEL_EXACT;
+        if (m.emits()) flags |= gpu::MATF_EMITS;
+        const float param = m.type == MaterialType::Dielectric ? m.ior : m.fuzz;
+        gpu::GpuMaterial g{};
+        g.m0 = v4(m.albedo, bitsf(flags));
+        g.m1 = v4(m.emit, param);
+        out.push_back(g);
+    }
+    return out;
+}
+
+std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape) {
+    std::vector<gpu::GpuLight> out;
+    const float pick = scene.lights.empty() ? 0.0f : 1.0f / float(scene.lights.size());
+    for (std::uint32_t shape : scene.lights) {
+        gpu::GpuLight l{};
+        l.l0 = glm::vec4(bitsf(primOfShape.at(shape)), pick, shapeArea(scene.shapes[shape]), 0.0f);
+        out.push_back(l);
+    }
+    return out;
+}
+
+}  // namespace vkp

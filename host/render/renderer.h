@@ -1,0 +1,68 @@
+// The progressive renderer: uploads a scene, owns the accumulation buffers, and adds samples per
+// pixel batch after batch. It knows nothing of files, progress bars or time limits (render/session).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/image.h"
+#include "render/features.h"
+#include "scene/scene.h"
+
+namespace vkp {
+
+class VulkanDevice;
+struct FlatBvh;
+
+struct RendererOptions {
+    Sampler sampler = Sampler::Mixture;
+    bool fullVariant = false;              ///< compile every feature in (`--variant full`)
+    std::uint32_t samplesPerDispatch = 1;  ///< samples one dispatch adds per pixel (lavapipe loop limit)
+};
+
+/// Totals since the render began.
+struct RenderCounters {
+    std::uint64_t rays = 0;       ///< rays traced: camera, bounce and shadow rays (counted on the device)
+    std::uint64_t nonfinite = 0;  ///< samples dropped because they were NaN or Inf
+    std::uint64_t loopGuard = 0;  ///< paths cut short by the loop-pass guard (a bug if not 0)
+};
+
+/// Per-pixel sums as the device holds them: for pixel i, sum[4i..4i+2] = sum of samples (RGB),
+/// sum[4i+3] = number of finite samples, sumSq[4i..4i+2] = sum of squares.
+struct PixelSums {
+    std::uint32_t width = 0, height = 0;
+    std::vector<float> sum, sumSq;
+    /// The mean image (radiance); pixels without a sample are 0.
+    Image mean() const;
+    /// The variance of each pixel's mean (sample variance / n), per channel.
+    Image varianceOfMean() const;
+};
+
+class Renderer {
+public:
+    /// Uploads `scene` (with its BVH) and builds the pipeline variant for it.
+    Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh, const RendererOptions& options);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// Adds samples [samplesDone(), samplesDone() + count) to every pixel, in one submission, and
+    /// waits for it. Throws VulkanError on a device failure or a validation message.
+    void addSamples(std::uint32_t count);
+    std::uint32_t samplesDone() const { return done_; }
+
+    PixelSums readSums();
+    Image image() { return readSums().mean(); }
+    RenderCounters counters();
+    const Features& features() const { return features_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    VulkanDevice* dev_;
+    Features features_;
+    std::uint32_t width_, height_, spd_;
+    std::uint32_t done_ = 0;
+};
+
+}  // namespace vkp

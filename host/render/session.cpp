@@ -1,0 +1,136 @@
+#include "render/session.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/errors.h"
+
+namespace vkp {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string humanRate(double v) {
+    char buf[32];
+    if (v >= 1e9) std::snprintf(buf, sizeof buf, "%.2f G", v / 1e9);
+    else if (v >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
+    else if (v >= 1e3) std::snprintf(buf, sizeof buf, "%.2f k", v / 1e3);
+    else std::snprintf(buf, sizeof buf, "%.0f ", v);
+    return buf;
+}
+
+class Progress {
+public:
+    Progress(bool quiet, std::uint32_t target) : quiet_(quiet), tty_(isatty(2) == 1), target_(target) {}
+    void update(std::uint32_t spp, double renderSeconds, double samples, double rays, double eta, bool force) {
+        if (quiet_) return;
+        const double now = secondsSince(start_);
+        if (!force && now - last_ < (tty_ ? 0.2 : 5.0)) return;
+        last_ = now;
+        char line[256];
+        std::snprintf(line, sizeof line, "%u/%u spp  %ssamples/s  %srays/s  ETA %.1f s", spp, target_,
+                      humanRate(samples / std::max(renderSeconds, 1e-9)).c_str(),
+                      humanRate(rays / std::max(renderSeconds, 1e-9)).c_str(), std::max(eta, 0.0));
+        if (tty_) {
+            const int width = 24;
+            const int filled = int(width * double(spp) / std::max<std::uint32_t>(target_, 1));
+            std::string bar(std::size_t(std::clamp(filled, 0, width)), '#');
+            bar.resize(width, '.');
+            std::fprintf(stderr, "\r[%s] %s\033[K", bar.c_str(), line);
+        } else {
+            std::fprintf(stderr, "vkpath: %s\n", line);
+        }
+        std::fflush(stderr);
+    }
+    void finish() {
+        if (!quiet_ && tty_) std::fprintf(stderr, "\n");
+    }
+
+private:
+    bool quiet_, tty_;
+    std::uint32_t target_;
+    Clock::time_point start_ = Clock::now();
+    double last_ = -1e9;
+};
+
+void writeAll(const Image& img, const std::vector<std::filesystem::path>& paths, double exposure) {
+    WriteOptions wo;
+    wo.exposure = exposure;
+    for (const auto& p : paths) writeImage(img, p, wo);
+}
+}  // namespace
+
+std::string dumpFileName(std::uint32_t spp, ImageFormat format) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "frame-%06u%s", spp, imageFormatExtension(format));
+    return buf;
+}
+
+SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::time_point processStart) {
+    SessionResult res;
+    Progress progress(o.quiet, o.spp);
+    const std::uint64_t pixels = renderer.readSums().sum.size() / 4;
+    res.pixels = pixels;
+    double perSample = 0.0;  // seconds per spp, measured
+    int batches = 0;
+    constexpr double kBatchSeconds = 0.5;  // aim for a submit this long: progress stays live
+    while (renderer.samplesDone() < o.spp) {
+        const std::uint32_t done = renderer.samplesDone();
+        std::uint32_t n = 1;  // the first batch is one sample: time to first pixel, JIT included
+        if (perSample > 0.0) n = std::uint32_t(std::clamp(kBatchSeconds / perSample, 1.0, 256.0));
+        n = std::min(n, o.spp - done);
+        if (o.dumpEvery) n = std::min(n, o.dumpEvery - done % o.dumpEvery);
+        if (o.timeLimit > 0.0 && done > 0) {
+            const double left = o.timeLimit - secondsSince(processStart);
+            if (left <= 0.0) break;
+            const double fit = std::floor(left / std::max(perSample, 1e-9));
+            if (fit < 1.0) break;
+            n = std::min<std::uint32_t>(n, std::uint32_t(std::min(fit, 1e9)));
+        }
+        const auto t0 = Clock::now();
+        renderer.addSamples(n);
+        const double dt = secondsSince(t0);
+        if (done == 0) res.firstBatchSeconds = dt;
+        res.renderSeconds += dt;
+        // The first batch includes the shader JIT: trust it only until the second batch is measured.
+        const double measured = dt / n;
+        perSample = batches < 2 ? measured : 0.5 * perSample + 0.5 * measured;
+        ++batches;
+        const std::uint32_t now = renderer.samplesDone();
+        const RenderCounters c = renderer.counters();
+        const double eta = double(o.spp - now) * perSample;
+        progress.update(now, res.renderSeconds, double(now) * pixels, double(c.rays), eta, now == o.spp);
+        if (o.dumpEvery && now % o.dumpEvery == 0 && now < o.spp) {
+            std::filesystem::create_directories(o.dumpDir);
+            const Image img = renderer.image();
+            for (ImageFormat f : o.dumpFormats) {
+                WriteOptions wo;
+                wo.exposure = o.exposure;
+                writeImage(img, o.dumpDir / dumpFileName(now, f), wo);
+            }
+        }
+        if (o.timeLimit > 0.0 && secondsSince(processStart) >= o.timeLimit) break;
+    }
+    progress.finish();
+    const Image img = renderer.image();
+    if (o.dumpEvery) {
+        std::filesystem::create_directories(o.dumpDir);
+        for (ImageFormat f : o.dumpFormats) {
+            WriteOptions wo;
+            wo.exposure = o.exposure;
+            writeImage(img, o.dumpDir / dumpFileName(renderer.samplesDone(), f), wo);
+        }
+    }
+    writeAll(img, o.outputs, o.exposure);
+    res.spp = renderer.samplesDone();
+    res.counters = renderer.counters();
+    res.seconds = secondsSince(processStart);
+    return res;
+}
+
+}  // namespace vkp

@@ -1,0 +1,42 @@
+// A render from start to finish: batches of samples until --spp or --time, progressive frame
+// dumps, progress on stderr, and the final images.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+#include "render/renderer.h"
+
+namespace vkp {
+
+struct SessionOptions {
+    std::uint32_t spp = 64;                        ///< stop after this many samples per pixel
+    double timeLimit = 0.0;                        ///< seconds since process start; 0 = none
+    std::vector<std::filesystem::path> outputs;    ///< final images (format by extension)
+    double exposure = 0.0;                         ///< stops, for PNG output
+    std::uint32_t dumpEvery = 0;                   ///< dump every N spp (0 = never)
+    std::filesystem::path dumpDir = "frames";
+    std::vector<ImageFormat> dumpFormats{ImageFormat::Png};  ///< formats of each dump
+    bool quiet = false;
+};
+
+struct SessionResult {
+    std::uint32_t spp = 0;
+    double seconds = 0.0;        ///< wall time since process start
+    double renderSeconds = 0.0;  ///< time spent in batches of samples
+    double firstBatchSeconds = 0.0;  ///< the first batch (1 spp), shader JIT included
+    RenderCounters counters;
+    std::uint64_t pixels = 0;
+};
+
+/// Runs the render. `processStart` is when the process started (the time limit counts from it).
+SessionResult runSession(Renderer& renderer, const SessionOptions& options,
+                         std::chrono::steady_clock::time_point processStart);
+
+/// File name of a progressive dump: frame-<spp zero-padded to 6 digits>.<ext>.
+std::string dumpFileName(std::uint32_t spp, ImageFormat format);
+
+}  // namespace vkp

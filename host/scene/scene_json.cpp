@@ -1,0 +1,134 @@
+// loadSceneJson: the top level, "camera", "render" and "materials" of the JSON scene format
+// (scenes/README.md). "objects" is in scene_json_objects.cpp.
+#include <cmath>
+#include <limits>
+
+#include "core/errors.h"
+#include "scene/json_reader.h"
+#include "scene/scene.h"
+#include "scene/scene_json_parts.h"
+
+namespace vkp {
+
+namespace scenejson {
+
+using json::Range;
+
+bool parallelOrZero(glm::vec3 a, glm::vec3 b) {
+    const glm::dvec3 da(a), db(b);
+    const double c = glm::length(glm::cross(da, db));
+    return !(c > 1e-6 * glm::length(da) * glm::length(db));  // also true for NaN
+}
+
+Camera readCamera(const json::Value& v) {
+    json::Object o = v.object();
+    Camera c;
+    c.lookfrom = o.vec3("lookfrom");
+    c.lookat = o.vec3("lookat");
+    c.vup = o.vec3("vup");
+    c.vfov = o.number("vfov", Range::open(0.0, 180.0));
+    c.width = o.uint32("width", 1, kMaxImageSide);
+    c.height = o.uint32("height", 1, kMaxImageSide);
+    c.defocusAngle = o.number("defocus_angle", Range::closedOpen(0.0, 180.0), 0.0f);
+
+    const glm::dvec3 view = glm::dvec3(c.lookat) - glm::dvec3(c.lookfrom);
+    const double dist = glm::length(view);
+    if (dist == 0.0) o.required("lookat").fail("must differ from lookfrom (the view direction is lookat - lookfrom)");
+    if (!std::isfinite(static_cast<float>(dist))) {
+        o.required("lookat").fail("is too far from lookfrom (distance overflows a float)");
+    }
+    if (c.vup == glm::vec3(0.0f)) o.required("vup").fail("must not be zero");
+    if (parallelOrZero(c.vup, glm::vec3(view))) {
+        o.required("vup").fail("must not be parallel to the view direction lookat - lookfrom");
+    }
+    c.focusDist = o.number("focus_dist", Range::above(0.0), static_cast<float>(dist));
+    o.finish();
+    return c;
+}
+
+RenderSettings readRender(const json::Value& v) {
+    json::Object o = v.object();
+    RenderSettings r;
+    r.spp = o.uint32("spp", 1, kMaxSpp, 64);
+    r.maxDepth = o.uint32("max_depth", 1, kMaxDepth, 50);
+    r.background = o.vec3("background", Range::atLeast(0.0), glm::vec3(0.0f));
+    r.seed = o.uint32("seed", 0, std::numeric_limits<std::uint32_t>::max(), 0);
+    o.finish();
+    return r;
+}
+
+namespace {
+
+Material readMaterial(const std::string& name, const json::Value& v) {
+    const Range unit = Range::closed(0.0, 1.0);
+    const Range nonNegative = Range::atLeast(0.0);
+    json::Object o = v.object();
+    Material m;
+    m.name = name;
+    const std::string type = o.choice("type", {"lambertian", "metal", "dielectric", "diffuse_light"});
+    if (type == "lambertian") {
+        m.type = MaterialType::Lambertian;
+        m.albedo = o.vec3("albedo", unit);
+        m.emit = o.vec3("emit", nonNegative, glm::vec3(0.0f));
+        m.twoSided = m.emits();  // an emitting lambertian surface emits from both faces
+    } else if (type == "metal") {
+        m.type = MaterialType::Metal;
+        m.albedo = o.vec3("albedo", unit);
+        m.fuzz = o.number("fuzz", unit, 0.0f);
+    } else if (type == "dielectric") {
+        m.type = MaterialType::Dielectric;
+        m.albedo = glm::vec3(1.0f);  // clear glass: the book's attenuation of 1
+        m.ior = o.number("ior", Range::above(0.0));
+        m.fresnelExact = o.choice("fresnel", {"schlick", "exact"}, "schlick") == "exact";
+    } else {
+        m.type = MaterialType::DiffuseLight;
+        m.emit = o.vec3("emit", nonNegative);
+        m.twoSided = o.boolean("two_sided", false);
+    }
+    o.finish();
+    return m;
+}
+
+}  // namespace
+
+void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index) {
+    json::Object o = v.object();
+    for (const auto& [name, unused] : v.json().items()) {
+        (void)unused;
+        const std::uint32_t i = static_cast<std::uint32_t>(scene.materials.size());
+        scene.materials.push_back(readMaterial(name, o.required(name)));
+        index.emplace(name, i);
+    }
+    o.finish();
+}
+
+}  // namespace scenejson
+
+Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
+    const std::string name = file.string();
+    const json::Json doc = json::parseDocument(std::string(text), name);
+    json::Object top = json::Value(doc, "", name).object();
+    // Every top-level key is known up front, so a misplaced key is reported before anything else.
+    const auto description = top.optional("description");
+    const json::Value camera = top.required("camera");
+    const auto render = top.optional("render");
+    const json::Value materials = top.required("materials");
+    const json::Value objects = top.required("objects");
+    top.finish();
+
+    Scene scene;
+    scene.path = file;
+    if (description) description->string();
+    scene.camera = scenejson::readCamera(camera);
+    if (render) scene.render = scenejson::readRender(*render);
+    std::map<std::string, std::uint32_t> index;
+    scenejson::readMaterials(materials, scene, index);
+    scenejson::readObjects(objects, index, scene);
+    return scene;
+}
+
+Scene loadSceneJson(const std::filesystem::path& file) {
+    return parseSceneJson(json::readTextFile(file), file);
+}
+
+}  // namespace vkp

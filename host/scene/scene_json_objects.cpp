@@ -1,0 +1,159 @@
+// The "objects" section of the JSON scene format (scenes/README.md): spheres, quads, boxes and
+// triangles, moved to world space by their "transform", and the light list.
+#include <cmath>
+#include <vector>
+
+#include "core/errors.h"
+#include "scene/json_reader.h"
+#include "scene/scene_json_parts.h"
+#include "scene/transform.h"
+
+namespace vkp::scenejson {
+
+namespace {
+
+Shape makeQuad(glm::vec3 q, glm::vec3 u, glm::vec3 v) {
+    Shape s;
+    s.type = ShapeType::Quad;
+    s.p0 = q;
+    s.p1 = u;
+    s.p2 = v;
+    return s;
+}
+
+/// The six faces of an axis-aligned box, as box() of "The Next Week" (chapter "Instances") builds them, in its
+/// order (front z=max, right x=max, back z=min, left x=min, top y=max, bottom y=min). Each face's
+/// u x v points out of the box.
+std::vector<Shape> boxFaces(glm::vec3 a, glm::vec3 b) {
+    const glm::vec3 dx(b.x - a.x, 0.0f, 0.0f), dy(0.0f, b.y - a.y, 0.0f), dz(0.0f, 0.0f, b.z - a.z);
+    return {
+        makeQuad({a.x, a.y, b.z}, dx, dy),   // front
+        makeQuad({b.x, a.y, b.z}, -dz, dy),  // right
+        makeQuad({b.x, a.y, a.z}, -dx, dy),  // back
+        makeQuad({a.x, a.y, a.z}, dz, dy),   // left
+        makeQuad({a.x, b.y, b.z}, dx, -dz),  // top
+        makeQuad({a.x, a.y, a.z}, dx, dz),   // bottom
+    };
+}
+
+bool finite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+/// Apply the object's transform to one shape (spheres: centre moves, radius scales).
+Shape transformed(const Shape& s, const ObjectTransform& xf) {
+    Shape out = s;
+    switch (s.type) {
+    case ShapeType::Sphere:
+        out.p0 = xf.map.point(s.p0);
+        out.radius = static_cast<float>(s.radius * xf.uniformScale);
+        break;
+    case ShapeType::Quad:  // a mirror keeps u, v as mapped: the front face u x v turns over
+        out.p0 = xf.map.point(s.p0);
+        out.p1 = xf.map.vector(s.p1);
+        out.p2 = xf.map.vector(s.p2);
+        break;
+    case ShapeType::Triangle:
+        out.p0 = xf.map.point(s.p0);
+        out.p1 = xf.map.point(s.p1);
+        out.p2 = xf.map.point(s.p2);
+        break;
+    }
+    return out;
+}
+
+/// One entry of "objects": its shapes in world space (a box gives six quads).
+std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
+                              const Scene& scene) {
+    json::Object o = v.object();
+    const std::string type = o.choice("type", {"sphere", "quad", "box", "triangle"});
+
+    const json::Value matValue = o.required("material");
+    const std::string matName = matValue.string();
+    const auto found = index.find(matName);
+    if (found == index.end()) matValue.fail("unknown material \"" + matName + "\" (not a key of /materials)");
+    const std::uint32_t material = found->second;
+    const bool emits = scene.materials[material].emits();
+
+    const auto sampleValue = o.optional("sample");
+    const bool sample = sampleValue ? sampleValue->boolean() : false;
+    if (sampleValue && !sample && emits) {
+        sampleValue->fail("must not be false: an object whose material emits is always sampled (it is a light)");
+    }
+
+    ObjectTransform xf;
+    if (auto t = o.optional("transform")) xf = readTransform(*t);
+
+    std::vector<Shape> local;
+    if (type == "sphere") {
+        Shape s;
+        s.type = ShapeType::Sphere;
+        s.p0 = o.vec3("center");
+        s.radius = o.number("radius", json::Range::above(0.0));
+        if (!xf.nonUniformAt.empty()) {
+            throw InputError(json::formatError(
+                v.file(), xf.nonUniformAt, "a sphere cannot be scaled non-uniformly (|x|, |y|, |z| must be equal)"));
+        }
+        local.push_back(s);
+    } else if (type == "quad") {
+        Shape s = makeQuad(o.vec3("Q"), o.vec3("u"), o.vec3("v"));
+        if (s.p1 == glm::vec3(0.0f)) o.required("u").fail("must not be zero");
+        if (parallelOrZero(s.p1, s.p2)) o.required("v").fail("must not be zero or parallel to u (u x v = 0)");
+        local.push_back(s);
+    } else if (type == "box") {
+        const glm::vec3 lo = o.vec3("min");
+        const json::Value maxValue = o.required("max");
+        const glm::vec3 hi = maxValue.vec3();
+        for (std::size_t i = 0; i < 3; ++i) {
+            const int k = static_cast<int>(i);
+            if (!(hi[k] > lo[k])) {
+                maxValue.element(i).fail("must be > min[" + std::to_string(i) + "] (got " +
+                                         json::describeValue(maxValue.json()[i]) + " <= " +
+                                         json::describeValue(o.required("min").json()[i]) + ")");
+            }
+        }
+        local = boxFaces(lo, hi);
+    } else {
+        Shape s;
+        s.type = ShapeType::Triangle;
+        s.p0 = o.vec3("v0");
+        s.p1 = o.vec3("v1");
+        s.p2 = o.vec3("v2");
+        local.push_back(s);
+    }
+    o.finish();
+
+    const bool sampled = emits || sample;
+    std::vector<Shape> out;
+    for (const Shape& s : local) {
+        Shape w = transformed(s, xf);
+        w.material = material;
+        w.sampled = sampled;
+        if (!finite(w.p0) || !finite(w.p1) || !finite(w.p2) || !std::isfinite(w.radius) ||
+            (w.type == ShapeType::Sphere && !(w.radius > 0.0f))) {
+            v.fail("the transformed " + type + " does not fit 32-bit floats (overflow or underflow)");
+        }
+        if (w.type == ShapeType::Quad && parallelOrZero(w.p1, w.p2)) {
+            o.required("transform").fail("makes the " + type + " degenerate (u x v = 0 in 32-bit floats)");
+        }
+        // Zero-area triangles may exist (never hit), but a light of zero area has no pdf.
+        if (w.type == ShapeType::Triangle && sampled && parallelOrZero(w.p1 - w.p0, w.p2 - w.p0)) {
+            if (sample) sampleValue->fail("a zero-area triangle cannot be sampled");
+            matValue.fail("a zero-area triangle cannot have an emitting material (\"" + matName +
+                          "\" emits): it would be a light of zero area");
+        }
+        out.push_back(w);
+    }
+    return out;
+}
+
+}  // namespace
+
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene) {
+    for (const json::Value& item : v.array()) {
+        for (const Shape& s : readObject(item, index, scene)) {
+            if (s.sampled) scene.lights.push_back(static_cast<std::uint32_t>(scene.shapes.size()));
+            scene.shapes.push_back(s);
+        }
+    }
+}
+
+}  // namespace vkp::scenejson

@@ -1,0 +1,31 @@
+// The sections of a JSON scene (scenes/README.md), one reader each. Internal to host/scene.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "scene/json_reader.h"
+#include "scene/scene.h"
+
+namespace vkp::scenejson {
+
+/// Largest image side, in pixels.
+inline constexpr std::uint32_t kMaxImageSide = 16384;
+/// Largest spp: the accumulation buffer counts samples in a float, exact up to 2^24.
+inline constexpr std::uint32_t kMaxSpp = 1u << 24;
+/// Largest max_depth (the shader's loop guard ends longer paths anyway).
+inline constexpr std::uint32_t kMaxDepth = 1024;
+
+/// "camera": the book's camera; focus_dist defaults to |lookfrom - lookat|.
+Camera readCamera(const json::Value& v);
+/// "render": spp, max_depth, background, seed (all optional).
+RenderSettings readRender(const json::Value& v);
+/// "materials": name -> material, appended in file order; index maps a name to its position.
+void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index);
+/// "objects": appends world-space shapes and the light list.
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene);
+
+/// |a x b| <= 1e-6 |a| |b|: a and b are parallel (to float precision) or one of them is zero.
+bool parallelOrZero(glm::vec3 a, glm::vec3 b);
+
+}  // namespace vkp::scenejson

@@ -1,0 +1,35 @@
+// A Vulkan buffer with its own memory (both RAII). Device-local where the device has it; data moves
+// through a mapping when that memory is also host-visible (lavapipe, integrated GPUs), otherwise
+// through a temporary staging buffer.
+#pragma once
+#include <cstddef>
+
+#include "vk/device.h"
+
+namespace vkp {
+
+class GpuBuffer {
+public:
+    /// size in bytes (0 is rounded up to 16 so that every binding is valid).
+    GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlags usage);
+
+    vk::Buffer buffer() const { return *buffer_; }
+    vk::DeviceSize size() const { return size_; }
+
+    /// Copy `bytes` bytes from host memory into the buffer at offset 0.
+    void upload(const void* data, std::size_t bytes);
+    /// Copy `bytes` bytes from the buffer (offset 0) to host memory.
+    void download(void* dst, std::size_t bytes);
+
+    /// A view of the buffer as an R32G32B32A32_UINT uniform texel buffer (usamplerBuffer).
+    vk::raii::BufferView texelView() const;
+
+private:
+    VulkanDevice* dev_;
+    vk::DeviceSize size_;
+    vk::raii::Buffer buffer_{nullptr};
+    vk::raii::DeviceMemory memory_{nullptr};
+    void* mapped_ = nullptr;
+};
+
+}  // namespace vkp

@@ -1,0 +1,73 @@
+#include "vk/device.h"
+
+#include "core/errors.h"
+
+namespace vkp {
+
+VulkanDevice::VulkanDevice(VulkanInstance& instance, const std::string& selector) : instance_(&instance) {
+    const DeviceChoice choice = selectDevice(instance.devices(), selector);
+    if (!choice.index) throw DeviceError(choice.error);
+    physical_ = &instance.physicalDevice(*choice.index);
+    info_ = instance.devices()[*choice.index];
+    memProps_ = physical_->getMemoryProperties();
+
+    const float priority = 1.0f;
+    vk::DeviceQueueCreateInfo qci{};
+    qci.queueFamilyIndex = *info_.computeQueueFamily;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    vk::DeviceCreateInfo dci{};
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    device_ = vk::raii::Device(*physical_, dci);
+    queue_ = device_.getQueue(*info_.computeQueueFamily, 0);
+
+    vk::CommandPoolCreateInfo pci{};
+    pci.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer;
+    pci.queueFamilyIndex = *info_.computeQueueFamily;
+    pool_ = vk::raii::CommandPool(device_, pci);
+    vk::CommandBufferAllocateInfo ai{};
+    ai.commandPool = *pool_;
+    ai.level = vk::CommandBufferLevel::ePrimary;
+    ai.commandBufferCount = 1;
+    cmd_ = std::move(vk::raii::CommandBuffers(device_, ai).front());
+    fence_ = vk::raii::Fence(device_, vk::FenceCreateInfo{});
+}
+
+void VulkanDevice::submitAndWait(const std::function<void(vk::raii::CommandBuffer&)>& record) {
+    cmd_.reset();
+    vk::CommandBufferBeginInfo bi{};
+    bi.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit;
+    cmd_.begin(bi);
+    record(cmd_);
+    cmd_.end();
+    vk::SubmitInfo si{};
+    vk::CommandBuffer raw = *cmd_;
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &raw;
+    queue_.submit(si, *fence_);
+    // Wait in slices so a device that never finishes is reported rather than hanging forever.
+    for (int i = 0; i < 600; ++i) {
+        if (device_.waitForFences(*fence_, VK_TRUE, 1'000'000'000ull) == vk::Result::eSuccess) {
+            device_.resetFences(*fence_);
+            return;
+        }
+    }
+    throw VulkanError("a dispatch did not finish within 600 s (device hung?)");
+}
+
+std::uint32_t VulkanDevice::memoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags required,
+                                       vk::MemoryPropertyFlags preferred) const {
+    std::int64_t fallback = -1;
+    for (std::uint32_t i = 0; i < memProps_.memoryTypeCount; ++i) {
+        if (!(typeBits & (1u << i))) continue;
+        const auto flags = memProps_.memoryTypes[i].propertyFlags;
+        if ((flags & required) != required) continue;
+        if ((flags & preferred) == preferred) return i;
+        if (fallback < 0) fallback = i;
+    }
+    if (fallback < 0) throw VulkanError("no Vulkan memory type with the required properties");
+    return std::uint32_t(fallback);
+}
+
+}  // namespace vkp

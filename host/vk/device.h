@@ -1,0 +1,41 @@
+// The logical device: one compute queue, a command pool and a fence for submit-and-wait.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "vk/instance.h"
+
+namespace vkp {
+
+class VulkanDevice {
+public:
+    /// Picks a device with selectDevice(instance.devices(), selector) and creates it.
+    /// Throws DeviceError (with the reason every candidate was refused) if none is usable.
+    VulkanDevice(VulkanInstance& instance, const std::string& selector);
+
+    vk::raii::Device& device() { return device_; }
+    vk::raii::PhysicalDevice& physical() { return *physical_; }
+    const DeviceInfo& info() const { return info_; }
+    VulkanInstance& instance() { return *instance_; }
+
+    /// Records commands with `record` into a fresh primary command buffer, submits it and waits.
+    void submitAndWait(const std::function<void(vk::raii::CommandBuffer&)>& record);
+
+    /// Index of a memory type with all of `required` properties among `typeBits`, preferring
+    /// one that also has `preferred`. Throws VulkanError if none.
+    std::uint32_t memoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags required,
+                             vk::MemoryPropertyFlags preferred = {}) const;
+
+private:
+    VulkanInstance* instance_;
+    vk::raii::PhysicalDevice* physical_;
+    DeviceInfo info_;
+    vk::raii::Device device_{nullptr};
+    vk::raii::Queue queue_{nullptr};
+    vk::raii::CommandPool pool_{nullptr};
+    vk::raii::CommandBuffer cmd_{nullptr};
+    vk::raii::Fence fence_{nullptr};
+    vk::PhysicalDeviceMemoryProperties memProps_{};
+};
+
+}  // namespace vkp

@@ -1,0 +1,122 @@
+#include "vk/instance.h"
+
+#include <cstring>
+
+#include "core/errors.h"
+
+namespace vkp {
+
+namespace {
+const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user) {
+    auto* log = static_cast<ValidationLog*>(user);
+    log->count.fetch_add(1);
+    std::lock_guard<std::mutex> lock(log->mutex);
+    if (log->messages.size() < 8) log->messages.emplace_back(data && data->pMessage ? data->pMessage : "(no text)");
+    return VK_FALSE;
+}
+
+DeviceKind kindOf(vk::PhysicalDeviceType t) {
+    switch (t) {
+        case vk::PhysicalDeviceType::eDiscreteGpu: return DeviceKind::Discrete;
+        case vk::PhysicalDeviceType::eIntegratedGpu: return DeviceKind::Integrated;
+        case vk::PhysicalDeviceType::eVirtualGpu: return DeviceKind::Virtual;
+        case vk::PhysicalDeviceType::eCpu: return DeviceKind::Cpu;
+        default: return DeviceKind::Other;
+    }
+}
+}  // namespace
+
+DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t index) {
+    DeviceInfo d;
+    d.index = index;
+    const vk::PhysicalDeviceProperties props = pd.getProperties();
+    d.name = props.deviceName.data();
+    d.kind = kindOf(props.deviceType);
+    d.apiVersion = props.apiVersion;
+    d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
+    d.maxUniformBufferRange = props.limits.maxUniformBufferRange;
+    d.maxPushConstantsSize = props.limits.maxPushConstantsSize;
+    if (props.apiVersion >= VK_API_VERSION_1_2) {
+        auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+        const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
+        d.driverName = drv.driverName.data();
+        d.driverInfo = drv.driverInfo.data();
+    }
+    const auto families = pd.getQueueFamilyProperties();
+    for (std::uint32_t i = 0; i < families.size(); ++i) {
+        if (families[i].queueFlags & vk::QueueFlagBits::eCompute) {
+            d.computeQueueFamily = i;
+            break;
+        }
+    }
+    const vk::FormatProperties fp = pd.getFormatProperties(vk::Format::eR32G32B32A32Uint);
+    d.hasTexelFormat = bool(fp.bufferFeatures & vk::FormatFeatureFlagBits::eUniformTexelBuffer);
+    return d;
+}
+
+VulkanInstance::VulkanInstance(bool validate) : validate_(validate), log_(std::make_unique<ValidationLog>()) {
+    try {
+        context_ = std::make_unique<vk::raii::Context>();
+    } catch (const std::exception&) {
+        throw DeviceError("no Vulkan loader: libvulkan.so.1 could not be opened (apt-get install libvulkan1 mesa-vulkan-drivers)");
+    }
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    if (validate_) {
+        bool found = false;
+        for (const auto& l : context_->enumerateInstanceLayerProperties())
+            if (std::strcmp(l.layerName.data(), kValidationLayer) == 0) found = true;
+        if (!found)
+            throw DeviceError("--validate: VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)");
+        layers.push_back(kValidationLayer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    vk::ApplicationInfo app{};
+    app.pApplicationName = "vkpath";
+    app.pEngineName = "vkpath";
+    app.apiVersion = VK_API_VERSION_1_2;
+    vk::InstanceCreateInfo ci{};
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = std::uint32_t(layers.size());
+    ci.ppEnabledLayerNames = layers.data();
+    ci.enabledExtensionCount = std::uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    vk::DebugUtilsMessengerCreateInfoEXT mci{};
+    mci.messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning | vk::DebugUtilsMessageSeverityFlagBitsEXT::eError;
+    mci.messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral | vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation |
+                      vk::DebugUtilsMessageTypeFlagBitsEXT::ePerformance;
+    mci.pfnUserCallback = &onValidationMessage;
+    mci.pUserData = log_.get();
+    if (validate_) ci.pNext = &mci;  // also reports problems during instance creation
+    try {
+        instance_ = vk::raii::Instance(*context_, ci);
+    } catch (const vk::IncompatibleDriverError&) {
+        throw DeviceError("no Vulkan driver: the loader found no driver (ICD) for Vulkan 1.2 (apt-get install mesa-vulkan-drivers)");
+    } catch (const vk::SystemError& e) {
+        throw DeviceError(std::string("cannot create a Vulkan instance: ") + e.what() + " (apt-get install mesa-vulkan-drivers)");
+    }
+    if (validate_) messenger_ = vk::raii::DebugUtilsMessengerEXT(instance_, mci);
+    try {
+        vk::raii::PhysicalDevices pds(instance_);
+        for (auto& pd : pds) physical_.push_back(std::move(pd));
+    } catch (const vk::SystemError& e) {
+        throw DeviceError(std::string("cannot list Vulkan devices: ") + e.what() + " (apt-get install mesa-vulkan-drivers)");
+    }
+    for (std::uint32_t i = 0; i < physical_.size(); ++i) infos_.push_back(describeDevice(physical_[i], i));
+}
+
+void VulkanInstance::throwIfValidationMessages(const std::string& when) const {
+    if (!validate_ || log_->count.load() == 0) return;
+    std::lock_guard<std::mutex> lock(log_->mutex);
+    std::string first = log_->messages.empty() ? std::string("?") : log_->messages.front();
+    for (char& c : first)
+        if (c == '\n') c = ' ';
+    throw VulkanError("validation layer reported " + std::to_string(log_->count.load()) + " message(s) " + when + "; first: " + first);
+}
+
+}  // namespace vkp

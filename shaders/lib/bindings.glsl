@@ -1,0 +1,74 @@
+// Descriptor bindings, specialization constants and data fetches of the path-tracing kernel.
+// Binding numbers must match host/render/renderer.cpp (kBinding*).
+#ifndef VKP_BINDINGS_GLSL
+#define VKP_BINDINGS_GLSL
+#include "shared/gpu_types.h"
+
+// ---- Variant: what this scene needs (host/render/features.cpp). A false constant removes the
+// code it guards from the pipeline, which on lavapipe is the only way to make it free.
+layout(constant_id = 0) const bool HAS_SPHERES = true;
+layout(constant_id = 1) const bool HAS_PARALLELOGRAMS = true;  // quads and triangles
+layout(constant_id = 2) const bool HAS_LAMBERTIAN = true;
+layout(constant_id = 3) const bool HAS_METAL = true;
+layout(constant_id = 4) const bool HAS_DIELECTRIC = true;
+layout(constant_id = 5) const bool HAS_EMITTERS = true;
+layout(constant_id = 6) const bool HAS_SPHERE_LIGHTS = true;         // sampled spheres
+layout(constant_id = 7) const bool HAS_PARALLELOGRAM_LIGHTS = true;  // sampled quads/triangles
+layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_* below
+layout(constant_id = 9) const bool HAS_DEFOCUS = true;
+
+// intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
+#define VKP_HAS_SPHERES HAS_SPHERES
+#define VKP_HAS_PARALLELOGRAMS HAS_PARALLELOGRAMS
+
+const uint SAMPLER_BSDF = 0u;     // cosine sampling only; emission counted where rays hit it
+const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
+const uint SAMPLER_MIXTURE = 2u;  // the book: 0.5 cosine + 0.5 lights (uniform pick), one direction
+
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { GpuFrame frame; };
+layout(set = 0, binding = 1) uniform usamplerBuffer uNodes;
+layout(set = 0, binding = 2) uniform usamplerBuffer uPrims;
+layout(set = 0, binding = 3) uniform usamplerBuffer uMaterials;
+layout(set = 0, binding = 4) uniform usamplerBuffer uLights;
+layout(set = 0, binding = 5, std430) buffer AccumSum { vec4 accumSum[]; };
+layout(set = 0, binding = 6, std430) buffer AccumSq { vec4 accumSq[]; };
+layout(set = 0, binding = 7, std430) buffer Counters { uint counters[]; };
+layout(push_constant) uniform PushBlock { GpuPush push; };
+
+vec4 fetchF(usamplerBuffer b, int i) { return uintBitsToFloat(texelFetch(b, i)); }
+
+GpuNode fetchNode(uint i) {
+    int base = int(i * GPU_NODE_TEXELS);
+    GpuNode n;
+    n.a = fetchF(uNodes, base);
+    n.b = fetchF(uNodes, base + 1);
+    n.c = fetchF(uNodes, base + 2);
+    n.d = fetchF(uNodes, base + 3);
+    return n;
+}
+
+GpuPrim fetchPrim(uint i) {
+    int base = int(i * GPU_PRIM_TEXELS);
+    GpuPrim p;
+    p.p0 = fetchF(uPrims, base);
+    p.p1 = fetchF(uPrims, base + 1);
+    p.p2 = fetchF(uPrims, base + 2);
+    return p;
+}
+
+GpuMaterial fetchMaterial(uint i) {
+    int base = int(i * GPU_MATERIAL_TEXELS);
+    GpuMaterial m;
+    m.m0 = fetchF(uMaterials, base);
+    m.m1 = fetchF(uMaterials, base + 1);
+    return m;
+}
+
+GpuLight fetchLight(uint i) {
+    GpuLight l;
+    l.l0 = fetchF(uLights, int(i));
+    return l;
+}
+
+#endif

@@ -1,0 +1,126 @@
+// BVH traversal for the kernels. The CPU twin is host/bvh/traverse_cpu.cpp: keep the two in step
+// (the GPU-vs-CPU test compares hits and pass counts).
+//
+// The includer defines, BEFORE including this file (it declares no bindings):
+//   GpuNode fetchNode(uint i);   // node i of the flattened BVH (host/bvh/flatten.h, 4 texels)
+//   GpuPrim fetchPrim(uint i);   // primitive i (3 texels)
+// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false (shared/intersect.h) and
+// VKP_MAX_PASSES.
+//
+// Algorithm: binary nodes holding both children's boxes; each step tests the two boxes, tests the
+// primitives of every hit leaf child at once (one inner loop), then descends into the nearer hit
+// inner child and pushes the other onto a short stack, or pops. Closest hit culls boxes beyond the
+// current hit.
+//
+// Loop guard: lavapipe silently ends loops after 65,535 passes per invocation (DESIGN.md).
+// `passes` counts like lavapipe: +2 per step (the step and the exit of its leaf loop), +1 per
+// primitive tested. The loop stops when passes >= VKP_MAX_PASSES. If the traversal did not finish
+// (budget used up, the driver ended the loop early, or the stack overflowed), passes is raised to
+// at least VKP_MAX_PASSES on return: the caller must then treat the path as cut short (and count it
+// in COUNTER_LOOP_GUARD). The count is per lane; lavapipe counts the maximum over 8 lanes, which is
+// why a loop ended by the driver is detected separately (the loop leaves without finishing).
+//
+// Stack: VKP_TRAVERSE_STACK (32) entries. The builder bounds the leaf depth by 32, so at most 31
+// are used. On overflow (only with a foreign, deeper tree) the far child is dropped and the trace
+// is reported as cut short as above.
+#ifndef VKP_TRAVERSE_GLSL
+#define VKP_TRAVERSE_GLSL
+
+#include "shared/intersect.h"
+
+#ifndef VKP_MAX_PASSES
+#define VKP_MAX_PASSES 60000u
+#endif
+#define VKP_TRAVERSE_STACK 32u
+
+// Shared body of traceClosest (anyHit = false) and traceAny (anyHit = true); the constant
+// argument is folded after inlining.
+bool vkpTraverse(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out uint primIndex,
+                 out float tHit, out vec2 abHit, inout uint passes) {
+    primIndex = GPU_NODE_EMPTY;
+    tHit = VKP_FAR;
+    abHit = vec2(0.0);
+    bool nanRay = any(isnan(o)) || any(isnan(d));
+    if (nanRay || !(tmin < tmax)) return false;
+    float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
+    vec3 invD = safeInverse(d);
+    uint stack[VKP_TRAVERSE_STACK];
+    uint sp = 0u;
+    uint node = 0u;
+    bool finished = false;
+    bool overflow = false;
+    bool found = false;
+    while (passes < uint(VKP_MAX_PASSES)) {
+        passes += 2u;
+        GpuNode n = fetchNode(node);
+        float tl = intersectBox(n.a.xyz, n.b.xyz, o, invD, tmin, t);
+        float tr = intersectBox(n.c.xyz, n.d.xyz, o, invD, tmin, t);
+        uint il = floatBitsToUint(n.a.w);
+        uint cl = floatBitsToUint(n.b.w);
+        uint ir = floatBitsToUint(n.c.w);
+        uint cr = floatBitsToUint(n.d.w);
+        bool hitL = tl < VKP_FAR;
+        bool hitR = tr < VKP_FAR;
+        uint nl = hitL ? cl : 0u;
+        uint nr = hitR ? cr : 0u;
+        for (uint i = 0u; i < nl + nr; ++i) {
+            passes += 1u;
+            uint p = (i < nl) ? il + i : ir + (i - nl);
+            vec2 ab;
+            float th = intersectPrim(fetchPrim(p), o, d, tmin, t, ab);
+            if (th < t) {
+                t = th;
+                primIndex = p;
+                abHit = ab;
+                found = true;
+                if (anyHit) break;
+            }
+        }
+        if (anyHit && found) {
+            finished = true;
+            break;
+        }
+        bool innerL = hitL && cl == 0u;
+        bool innerR = hitR && cr == 0u;
+        if (innerL && innerR) {
+            bool leftFirst = tl <= tr;
+            if (sp < VKP_TRAVERSE_STACK) {
+                stack[sp] = leftFirst ? ir : il;
+                sp += 1u;
+            } else {
+                overflow = true;
+            }
+            node = leftFirst ? il : ir;
+        } else if (innerL || innerR) {
+            node = innerL ? il : ir;
+        } else if (sp > 0u) {
+            sp -= 1u;
+            node = stack[sp];
+        } else {
+            finished = true;
+            break;
+        }
+    }
+    if (!finished || overflow) passes = max(passes, uint(VKP_MAX_PASSES));
+    tHit = found ? t : VKP_FAR;
+    return found;
+}
+
+/// Closest hit with t in (tmin, tmax) of the ray o + t d (d unit length, world units). Returns
+/// true on a hit, with primIndex (into the primitive array), t and ab (intersectPrim's surface
+/// parameters); on a miss primIndex = GPU_NODE_EMPTY, t = VKP_FAR. A ray with a NaN component or
+/// !(tmin < tmax) misses without a pass. See the loop guard above for `passes`.
+bool traceClosest(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
+                  out vec2 ab, inout uint passes) {
+    return vkpTraverse(false, o, d, tmin, tmax, primIndex, t, ab, passes);
+}
+
+/// Shadow rays: true if anything is hit with t in (tmin, tmax); stops at the first hit.
+bool traceAny(vec3 o, vec3 d, float tmin, float tmax, inout uint passes) {
+    uint primIndex;
+    float t;
+    vec2 ab;
+    return vkpTraverse(true, o, d, tmin, tmax, primIndex, t, ab, passes);
+}
+
+#endif

@@ -1,0 +1,98 @@
+// GPU data layout: the one declaration of every struct the host uploads and the kernels read.
+// Included by C++ (host/, static_asserts in host/render/gpu_layout_check.cpp) and by GLSL.
+// Large arrays live in texel buffers (RGBA32UI, one texel = one vec4/uvec4 member); the small
+// per-frame block is a uniform buffer (std140). See ../shared/DESIGN.md for why.
+#ifndef VKP_GPU_TYPES_H
+#define VKP_GPU_TYPES_H
+#include "glsl_compat.h"
+
+VKP_BEGIN
+
+// ---- Primitives (3 texels, 48 bytes) --------------------------------------------------------
+// Kinds stored in the low 2 bits of the header word.
+const uint PRIM_SPHERE = 0u;
+const uint PRIM_QUAD = 1u;      // parallelogram Q + a u + b v, a,b in [0,1]
+const uint PRIM_TRIANGLE = 2u;  // v0 + a e1 + b e2, a,b >= 0, a + b <= 1
+// Header word (p0.w as bits): kind | (material << 2). Material indices < 2^30.
+// p0.xyz: sphere centre | quad Q | triangle v0        (world units)
+// p1.xyz: -             | quad u | triangle e1 = v1-v0; p1.w: sphere radius (else 0)
+// p2.xyz: -             | quad v | triangle e2 = v2-v0; p2.w: bits of light index + 1 (0: not a light)
+struct GpuPrim {
+    vec4 p0;
+    vec4 p1;
+    vec4 p2;
+};
+const uint GPU_PRIM_TEXELS = 3u;
+
+// ---- BVH nodes (4 texels, 64 bytes): a binary node stores the boxes of both children ---------
+// a.xyz/b.xyz: left child min/max, c.xyz/d.xyz: right child min/max.
+// a.w: left child (bits): node index if b.w == 0, else first primitive of the leaf;
+// b.w: left leaf primitive count (bits, 0 = inner node); c.w, d.w: the same for the right child.
+// An empty child (only in a scene with < 2 primitives) has min = +big, max = -big and count 0
+// with index 0xffffffff: it is never entered. Node 0 is the root.
+struct GpuNode {
+    vec4 a;
+    vec4 b;
+    vec4 c;
+    vec4 d;
+};
+const uint GPU_NODE_TEXELS = 4u;
+const uint GPU_NODE_EMPTY = 0xffffffffu;
+
+// ---- Materials (2 texels) ----------------------------------------------------------------------
+const uint MAT_LAMBERTIAN = 0u;
+const uint MAT_METAL = 1u;
+const uint MAT_DIELECTRIC = 2u;
+const uint MAT_DIFFUSE_LIGHT = 3u;
+// Flag bits above the type (bits 0-3 hold the type).
+const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
+const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
+const uint MATF_EMITS = 64u;          // emit != 0
+// m0.xyz: albedo (linear RGB), m0.w: bits of type | flags
+// m1.xyz: emitted radiance (linear RGB, W sr^-1 m^-2 in scene units), m1.w: fuzz (metal) or ior
+struct GpuMaterial {
+    vec4 m0;
+    vec4 m1;
+};
+const uint GPU_MATERIAL_TEXELS = 2u;
+
+// ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
+// x: primitive index (bits), y: selection probability (float), z: area in world units^2 (float),
+// w: reserved (0).
+struct GpuLight {
+    vec4 l0;
+};
+const uint GPU_LIGHT_TEXELS = 1u;
+
+// ---- Per-render uniform block (std140, vec4 members only) -------------------------------------
+// Camera of "Ray Tracing in One Weekend" sec. 13: pixel (i,j) centre = pixel00 + i du + j dv,
+// where row j = 0 is the top of the image; defocus disk = origin + a du_lens + b dv_lens.
+struct GpuFrame {
+    vec4 origin;      // xyz: camera centre (world units)
+    vec4 pixel00;     // xyz: centre of pixel (0,0)
+    vec4 pixelDu;     // xyz: step to the next column (+u)
+    vec4 pixelDv;     // xyz: step to the next row (-v)
+    vec4 defocusU;    // xyz: defocus disk radius along u (0 = pinhole)
+    vec4 defocusV;    // xyz: defocus disk radius along v
+    vec4 background;  // rgb: radiance of escaping rays
+    uvec4 size;       // x: width, y: height, z: max_depth, w: seed
+    uvec4 counts;     // x: number of sampled objects (lights), y: Russian-roulette start depth,
+                      // z: primitive count, w: node count
+};
+
+// Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel.
+struct GpuPush {
+    uvec4 batch;  // x: sampleStart, y: sampleCount, z, w: reserved
+};
+
+// Accumulation (SSBO, written by the kernel): per pixel, sum.rgb and the number of finite samples
+// in sum.w; sumSq.rgb the per-channel sum of squares (for variance estimates).
+// Counters (SSBO): see COUNTER_* indices.
+const uint COUNTER_NONFINITE = 0u;   // samples dropped because they were NaN or Inf
+const uint COUNTER_RAYS_LO = 1u;     // rays traced (64-bit, low word)
+const uint COUNTER_RAYS_HI = 2u;     // rays traced (high word)
+const uint COUNTER_LOOP_GUARD = 3u;  // paths cut short by the loop-pass guard (must stay 0)
+const uint COUNTER_COUNT = 4u;
+
+VKP_END
+#endif

@@ -1,0 +1,144 @@
+// Ray-primitive intersection, shared by the kernels and the host's CPU traversal (host/bvh).
+// Rays: origin o and unit direction d in world units; hits are accepted for t in (tmin, tmax).
+// Every function returns the hit distance t, or VKP_FAR for a miss. Acceptance tests are written
+// so that a NaN (degenerate primitive, zero determinant) compares false and therefore misses.
+#ifndef VKP_INTERSECT_H
+#define VKP_INTERSECT_H
+#include "gpu_types.h"
+
+VKP_BEGIN
+
+/// Sphere of centre c and radius r. Uses the numerically careful form of Haines et al.,
+/// "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7): the
+/// discriminant from the distance of the centre to the ray, and the root that avoids cancellation.
+VKP_FN float intersectSphere(vec3 c, float r, vec3 o, vec3 d, float tmin, float tmax) {
+    vec3 f = o - c;
+    float b = dot(f, d);                 // half of the usual b (d is unit length)
+    vec3 l = f - b * d;                  // centre -> closest point on the ray's line
+    float disc = r * r - dot(l, l);
+    if (!(disc >= 0.0f)) return VKP_FAR;
+    float s = sqrt(disc);
+    float q = (b > 0.0f) ? -(b + s) : -(b - s);
+    float cc = dot(f, f) - r * r;
+    // q == 0 only when b == 0 and disc == 0, which makes cc == 0: a double root at t = 0. Writing
+    // it out avoids 0/0 = NaN, on which GLSL's min/max and glm's would disagree.
+    float t0 = (q != 0.0f) ? cc / q : 0.0f;
+    float t1 = q;
+    float tn = min(t0, t1);
+    float tf = max(t0, t1);
+    if (tn > tmin && tn < tmax) return tn;
+    if (tf > tmin && tf < tmax) return tf;
+    return VKP_FAR;
+}
+
+/// Parallelogram Q + a e1 + b e2 (a,b in [0,1]) or, with triangle = true, triangle
+/// Q + a e1 + b e2 (a,b >= 0, a+b <= 1). Moller-Trumbore ("Fast, Minimum Storage Ray/Triangle
+/// Intersection", 1997) with e1, e2 as edges. ab receives (a, b) of the hit point.
+VKP_FN float intersectParallelogram(vec3 Q, vec3 e1, vec3 e2, bool triangle, vec3 o, vec3 d,
+                                    float tmin, float tmax, OUT(vec2) ab) {
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    float inv = 1.0f / det;
+    vec3 tv = o - Q;
+    float a = dot(tv, pv) * inv;
+    vec3 qv = cross(tv, e1);
+    float b = dot(d, qv) * inv;
+    float t = dot(e2, qv) * inv;
+    ab = vec2(a, b);
+    float limitB = triangle ? 1.0f - a : 1.0f;
+    bool inside = (a >= 0.0f) && (a <= 1.0f) && (b >= 0.0f) && (b <= limitB);
+    bool inRange = (t > tmin) && (t < tmax);
+    return (inside && inRange) ? t : VKP_FAR;
+}
+
+/// Header word of a packed primitive (see GpuPrim).
+VKP_FN uint primKind(GpuPrim p) { return floatBitsToUint(p.p0.w) & 3u; }
+VKP_FN uint primMaterial(GpuPrim p) { return floatBitsToUint(p.p0.w) >> 2u; }
+/// Light index of a primitive, or -1 when it is not in the light list.
+VKP_FN int primLight(GpuPrim p) { return int(floatBitsToUint(p.p2.w)) - 1; }
+
+// A kernel compiled for a scene without some primitive kind defines VKP_HAS_SPHERES or
+// VKP_HAS_PARALLELOGRAMS (quads and triangles) as a boolean expression, usually a specialization
+// constant, before including this header. They are tested in plain `if`s, so a false constant
+// removes that kind's code from intersectPrim when the pipeline is created (on lavapipe every
+// reachable branch body runs, see DESIGN.md). Primitives of a compiled-out kind are never hit.
+#ifndef VKP_HAS_SPHERES
+#define VKP_HAS_SPHERES true
+#endif
+#ifndef VKP_HAS_PARALLELOGRAMS
+#define VKP_HAS_PARALLELOGRAMS true
+#endif
+
+/// Any packed primitive. ab receives the surface parameters of the hit (quads, triangles; (0,0)
+/// for spheres).
+VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OUT(vec2) ab) {
+    uint kind = primKind(p);
+    ab = vec2(0.0f);
+    float t = VKP_FAR;
+    if (VKP_HAS_SPHERES && kind == PRIM_SPHERE) {
+        t = intersectSphere(vec3(p.p0.x, p.p0.y, p.p0.z), p.p1.w, o, d, tmin, tmax);
+    }
+    if (VKP_HAS_PARALLELOGRAMS && kind != PRIM_SPHERE) {
+        vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
+        vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
+        vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
+        t = intersectParallelogram(p0, e1, e2, kind == PRIM_TRIANGLE, o, d, tmin, tmax, ab);
+    }
+    return t;
+}
+
+/// Geometric normal (unit, the primitive's front side: outward for spheres, e1 x e2 otherwise)
+/// at hit point x.
+VKP_FN vec3 primNormal(GpuPrim p, vec3 x) {
+    if (primKind(p) == PRIM_SPHERE) return (x - vec3(p.p0.x, p.p0.y, p.p0.z)) / p.p1.w;
+    return normalize(cross(vec3(p.p1.x, p.p1.y, p.p1.z), vec3(p.p2.x, p.p2.y, p.p2.z)));
+}
+
+/// 1/x for the slab test: +-infinity when |x| <= 1e-20 (the sign of x; +inf for +-0), so the result
+/// never depends on how a device divides by zero or overflows (a reciprocal refined by Newton steps
+/// can turn 1/0 into NaN). A ray with |d.x| <= 1e-20 is treated as parallel to the x slabs.
+/// NaN gives +inf (meaningless but harmless: the traversal rejects rays with NaN up front).
+VKP_FN float safeInverse(float x) {
+    float inf = uintBitsToFloat(0x7f800000u);
+    float big = (x < 0.0f) ? -inf : inf;
+    return (abs(x) > 1.0e-20f) ? 1.0f / x : big;
+}
+VKP_FN vec3 safeInverse(vec3 d) {
+    return vec3(safeInverse(d.x), safeInverse(d.y), safeInverse(d.z));
+}
+
+/// Factor applied to a box's exit distance so that rounding in the slab test never rejects a box
+/// whose primitive the exact test hits: 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps), eps = 2^-24
+/// (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013, sec. 3).
+const float VKP_BOX_EXIT_SCALE = 1.0000004f;
+
+/// Slab test of a ray against the closed box [bmin, bmax] with invD = safeInverse(d) (Kay & Kajiya
+/// 1986; Williams et al., "An Efficient and Robust Ray-Box Intersection Algorithm", 2005).
+/// Returns the entry distance max(tmin, box entry), or VKP_FAR if the box is missed in
+/// [tmin, tmax]. A flat box (bmin.x == bmax.x) is hit where the ray crosses its plane.
+/// Robustness: the near/far plane of each axis is chosen by the sign of invD, never by min/max of
+/// the two distances; a product 0 * inf = NaN (a ray parallel to an axis lying exactly in a slab
+/// plane) is then ignored, which counts that plane as inside (the box is closed). Every fold starts
+/// from tmin/tmax and keeps the old value when the comparison involves NaN, so GLSL (whose min/max
+/// return the non-NaN operand on lavapipe) and C++ (glm::min may return NaN) agree bit for bit.
+/// An inverted box (bmin > bmax, the empty child of GpuNode) is always missed.
+VKP_FN float intersectBox(vec3 bmin, vec3 bmax, vec3 o, vec3 invD, float tmin, float tmax) {
+    float enter = tmin;
+    float exit = tmax;
+    float n0 = (((invD.x >= 0.0f) ? bmin.x : bmax.x) - o.x) * invD.x;
+    float f0 = (((invD.x >= 0.0f) ? bmax.x : bmin.x) - o.x) * invD.x;
+    float n1 = (((invD.y >= 0.0f) ? bmin.y : bmax.y) - o.y) * invD.y;
+    float f1 = (((invD.y >= 0.0f) ? bmax.y : bmin.y) - o.y) * invD.y;
+    float n2 = (((invD.z >= 0.0f) ? bmin.z : bmax.z) - o.z) * invD.z;
+    float f2 = (((invD.z >= 0.0f) ? bmax.z : bmin.z) - o.z) * invD.z;
+    enter = (n0 > enter) ? n0 : enter;
+    enter = (n1 > enter) ? n1 : enter;
+    enter = (n2 > enter) ? n2 : enter;
+    exit = (f0 < exit) ? f0 : exit;
+    exit = (f1 < exit) ? f1 : exit;
+    exit = (f2 < exit) ? f2 : exit;
+    return (enter <= exit * VKP_BOX_EXIT_SCALE) ? enter : VKP_FAR;
+}
+
+VKP_END
+#endif

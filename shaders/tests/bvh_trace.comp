@@ -1,0 +1,60 @@
+// Test kernel: traces a list of rays through the BVH with lib/traverse.glsl, so a GPU test can
+// compare the device's traversal with the CPU twin (host/bvh/traverse_cpu.h).
+//   binding 0 (SSBO, read):  per ray two vec4: (origin.xyz, tmin), (direction.xyz, tmax);
+//                            the ray count is the bound range / 32 bytes; invocation
+//                            x + y * (groups in x * 64) traces ray number that (extra ones idle)
+//   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (FlatBvh::nodes, 4 texels each)
+//   binding 2 (usamplerBuffer RGBA32UI): primitives (FlatBvh::prims, 3 texels each)
+//   binding 3 (SSBO, written): per ray a uvec4:
+//       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
+//       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
+//       its passes << 1 (starting from 0)
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 64) in;
+
+#include "shared/gpu_types.h"
+
+layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; };
+layout(binding = 1) uniform usamplerBuffer nodeTexels;
+layout(binding = 2) uniform usamplerBuffer primTexels;
+layout(std430, binding = 3) writeonly buffer Results { uvec4 results[]; };
+
+GpuNode fetchNode(uint i) {
+    int b = int(i * GPU_NODE_TEXELS);
+    GpuNode n;
+    n.a = uintBitsToFloat(texelFetch(nodeTexels, b));
+    n.b = uintBitsToFloat(texelFetch(nodeTexels, b + 1));
+    n.c = uintBitsToFloat(texelFetch(nodeTexels, b + 2));
+    n.d = uintBitsToFloat(texelFetch(nodeTexels, b + 3));
+    return n;
+}
+
+GpuPrim fetchPrim(uint i) {
+    int b = int(i * GPU_PRIM_TEXELS);
+    GpuPrim p;
+    p.p0 = uintBitsToFloat(texelFetch(primTexels, b));
+    p.p1 = uintBitsToFloat(texelFetch(primTexels, b + 1));
+    p.p2 = uintBitsToFloat(texelFetch(primTexels, b + 2));
+    return p;
+}
+
+#include "lib/traverse.glsl"
+
+void main() {
+    // Works with any dispatch shape that has at least `count` invocations (rows of workgroups).
+    uint id = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    uint count = uint(rays.length()) / 2u;
+    if (id >= count) return;
+    vec4 od = rays[2u * id];
+    vec4 dd = rays[2u * id + 1u];
+    uint prim;
+    float t;
+    vec2 ab;
+    uint passesClosest = 0u;
+    traceClosest(od.xyz, dd.xyz, od.w, dd.w, prim, t, ab, passesClosest);
+    uint passesAny = 0u;
+    bool anyHit = traceAny(od.xyz, dd.xyz, od.w, dd.w, passesAny);
+    results[id] = uvec4(floatBitsToUint(t), prim, passesClosest, (anyHit ? 1u : 0u) | (passesAny << 1u));
+}

@@ -1,0 +1,147 @@
+#version 460
+// Device test kernel for the shared sampling code (rng.h, onb.h, sampling.h, light_sampling.h,
+// scatter.h): evaluates the routine chosen by the push constant for `count` items, so a host test
+// can compare the GPU results with the same headers compiled as C++.
+//
+// I/O layout (std430, every element a vec4):
+//   binding 0 (read):  inData[4 * i + k], k = 0..3  -> in0..in3 of item i
+//   binding 1 (write): outData[2 * i + k], k = 0..1 -> out0, out1 of item i
+//   push constant:     uint routine, uint count
+// Unused components are written as 0. Integers travel as float bits (uintBitsToFloat).
+//
+// Routine ids (u = uniform numbers in [0,1), dir/p world space unless "local"):
+//  0 RNG          in0.xyz = bits of (pixel, sampleIndex, seed)
+//                 out0 = draws 1-4 of rngInit(pixel, sample, seed), out1 = draws 5-8
+//  1 ONB          in0.xyz = unit n, in1.xyz = v
+//                 out0.xyz = toWorld(onbFromNormal(n), v), out1.xyz = toLocal(onbFromNormal(n), v)
+//  2 COSINE_HEMI  in0.xy = u   out0.xyz = sampleCosineHemisphere(u), out0.w = its pdf,
+//                              out1.xy = invertCosineHemisphere(out0.xyz)
+//  3 UNIFORM_SPHERE  same layout (pdf = pdfUniformSphere())
+//  4 UNIFORM_HEMI    same layout
+//  5 UNIFORM_CONE in0.xy = u, in0.z = oneMinusCosMax; same layout (pdfUniformCone of the sample)
+//  6 UNIFORM_DISK in0.xy = u   out0.xy = point, out0.w = pdf, out1.xy = invert
+//  7 UNIFORM_BALL in0.xyz = u  out0.xyz = point, out0.w = pdf, out1.xyz = invert
+//  8 QUAD_LIGHT   in0.xyz = Q, in1.xyz = u, in2.xyz = v, in3.xyz = p, (in0.w, in1.w) = xi
+//                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfQuadLight(dir), out1.zw = invert
+//  9 TRI_LIGHT    in0.xyz = v0, in1.xyz = e1, in2.xyz = e2, rest as 8
+// 10 SPHERE_LIGHT in0.xyz = c, in0.w = R, in3.xyz = p, in1.xy = xi; outputs as 8
+// 11 LAMBERTIAN   in0.xyz = unit n, in1.xy = u
+//                 out0.xyz = sampleLambertian(n, u), out0.w = pdfLambertian, out1.xy = invert
+// 12 METAL        in0.xyz = dIn, in1.xyz = n, in1.w = fuzz, in2.xyz = u3
+//                 out0.xyz = scatterMetal(...), out0.w = absorbed ? 1 : 0
+// 13 DIELECTRIC   in0.xyz = dIn, in1.xyz = n, in1.w = ior, in2.x = frontFace (0/1),
+//                 in2.y = exact (0/1), in2.z = u       out0.xyz = scatterDielectric(...)
+// 14 FRESNEL      in0.x = cosine c, in0.y = a value e passed unchanged to each function:
+//                 out0.x = fresnelSchlick(c, e),
+//                 out0.y = fresnelDielectricExact(c, e)          (e read as eta_t / eta_i),
+//                 out0.z = dielectricReflectProbability(c, e, false) (e read as eta_i / eta_t),
+//                 out0.w = dielectricReflectProbability(c, e, true)
+#extension GL_GOOGLE_include_directive : require
+
+#include "shared/light_sampling.h"
+#include "shared/rng.h"
+#include "shared/scatter.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, set = 0, binding = 0) readonly buffer InBuf { vec4 inData[]; };
+layout(std430, set = 0, binding = 1) writeonly buffer OutBuf { vec4 outData[]; };
+layout(push_constant) uniform Push {
+    uint routine;
+    uint count;
+} pc;
+
+const uint R_RNG = 0u;
+const uint R_ONB = 1u;
+const uint R_COSINE_HEMI = 2u;
+const uint R_UNIFORM_SPHERE = 3u;
+const uint R_UNIFORM_HEMI = 4u;
+const uint R_UNIFORM_CONE = 5u;
+const uint R_UNIFORM_DISK = 6u;
+const uint R_UNIFORM_BALL = 7u;
+const uint R_QUAD_LIGHT = 8u;
+const uint R_TRI_LIGHT = 9u;
+const uint R_SPHERE_LIGHT = 10u;
+const uint R_LAMBERTIAN = 11u;
+const uint R_METAL = 12u;
+const uint R_DIELECTRIC = 13u;
+const uint R_FRESNEL = 14u;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= pc.count) return;
+    vec4 in0 = inData[4u * i + 0u];
+    vec4 in1 = inData[4u * i + 1u];
+    vec4 in2 = inData[4u * i + 2u];
+    vec4 in3 = inData[4u * i + 3u];
+    vec4 out0 = vec4(0.0);
+    vec4 out1 = vec4(0.0);
+    uint r = pc.routine;
+
+    if (r == R_RNG) {
+        uint s = rngInit(floatBitsToUint(in0.x), floatBitsToUint(in0.y), floatBitsToUint(in0.z));
+        for (int k = 0; k < 4; ++k) out0[k] = rngNext(s);
+        for (int k = 0; k < 4; ++k) out1[k] = rngNext(s);
+    } else if (r == R_ONB) {
+        Onb f = onbFromNormal(in0.xyz);
+        out0.xyz = toWorld(f, in1.xyz);
+        out1.xyz = toLocal(f, in1.xyz);
+    } else if (r == R_COSINE_HEMI) {
+        vec3 w = sampleCosineHemisphere(in0.xy);
+        out0 = vec4(w, pdfCosineHemisphere(w.z));
+        out1.xy = invertCosineHemisphere(w);
+    } else if (r == R_UNIFORM_SPHERE) {
+        vec3 w = sampleUniformSphere(in0.xy);
+        out0 = vec4(w, pdfUniformSphere());
+        out1.xy = invertUniformSphere(w);
+    } else if (r == R_UNIFORM_HEMI) {
+        vec3 w = sampleUniformHemisphere(in0.xy);
+        out0 = vec4(w, pdfUniformHemisphere(w.z));
+        out1.xy = invertUniformHemisphere(w);
+    } else if (r == R_UNIFORM_CONE) {
+        vec3 w = sampleUniformCone(in0.xy, in0.z);
+        out0 = vec4(w, pdfUniformCone(w, in0.z));
+        out1.xy = invertUniformCone(w, in0.z);
+    } else if (r == R_UNIFORM_DISK) {
+        vec2 q = sampleUniformDisk(in0.xy);
+        out0 = vec4(q, 0.0, pdfUniformDisk(q));
+        out1.xy = invertUniformDisk(q);
+    } else if (r == R_UNIFORM_BALL) {
+        vec3 q = sampleUniformBall(in0.xyz);
+        out0 = vec4(q, pdfUniformBall(q));
+        out1.xyz = invertUniformBall(q);
+    } else if (r == R_QUAD_LIGHT || r == R_TRI_LIGHT) {
+        vec2 xi = vec2(in0.w, in1.w);
+        bool tri = (r == R_TRI_LIGHT);
+        LightSample s = tri ? sampleTriangleLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, xi)
+                            : sampleQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, xi);
+        out0 = vec4(s.dir, s.dist);
+        out1.x = s.pdf;
+        out1.y = tri ? pdfTriangleLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir)
+                     : pdfQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
+        out1.zw = tri ? invertTriangleLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir)
+                      : invertQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
+    } else if (r == R_SPHERE_LIGHT) {
+        LightSample s = sampleSphereLight(in0.xyz, in0.w, in3.xyz, in1.xy);
+        out0 = vec4(s.dir, s.dist);
+        out1.x = s.pdf;
+        out1.y = pdfSphereLight(in0.xyz, in0.w, in3.xyz, s.dir);
+        out1.zw = invertSphereLight(in0.xyz, in0.w, in3.xyz, s.dir);
+    } else if (r == R_LAMBERTIAN) {
+        vec3 w = sampleLambertian(in0.xyz, in1.xy);
+        out0 = vec4(w, pdfLambertian(in0.xyz, w));
+        out1.xy = invertLambertian(in0.xyz, w);
+    } else if (r == R_METAL) {
+        bool absorbed;
+        vec3 w = scatterMetal(in0.xyz, in1.xyz, in1.w, in2.xyz, absorbed);
+        out0 = vec4(w, absorbed ? 1.0 : 0.0);
+    } else if (r == R_DIELECTRIC) {
+        out0.xyz = scatterDielectric(in0.xyz, in1.xyz, in2.x != 0.0, in1.w, in2.y != 0.0, in2.z);
+    } else if (r == R_FRESNEL) {
+        out0 = vec4(fresnelSchlick(in0.x, in0.y), fresnelDielectricExact(in0.x, in0.y),
+                    dielectricReflectProbability(in0.x, in0.y, false),
+                    dielectricReflectProbability(in0.x, in0.y, true));
+    }
+    outData[2u * i + 0u] = out0;
+    outData[2u * i + 1u] = out1;
+}

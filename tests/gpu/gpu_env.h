@@ -1,0 +1,42 @@
+// The shared Vulkan set-up of the GPU tests: one instance with the validation layer on, and the
+// default device. Any validation message fails the test that caused it (see checkValidation).
+// Without a usable device the tests are skipped with the reason, except in CI (CI=true), where a
+// missing device is a failure.
+#pragma once
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "vk/device.h"
+
+namespace vkp::test {
+
+class GpuEnv {
+public:
+    /// The process-wide device, or nullptr with reason() set.
+    static GpuEnv& get();
+    VulkanDevice* device() { return device_.get(); }
+    VulkanInstance* instance() { return instance_.get(); }
+    const std::string& reason() const { return reason_; }
+
+private:
+    GpuEnv();
+    std::unique_ptr<VulkanInstance> instance_;
+    std::unique_ptr<VulkanDevice> device_;
+    std::string reason_;
+};
+
+/// True when running in CI (environment variable CI=true).
+bool inCi();
+
+}  // namespace vkp::test
+
+/// Use at the top of a GPU test: gives `dev` (VulkanDevice&), or skips (fails in CI).
+#define VKP_REQUIRE_DEVICE(dev)                                                               \
+    auto* dev##_ptr = ::vkp::test::GpuEnv::get().device();                                    \
+    if (!dev##_ptr) {                                                                         \
+        if (::vkp::test::inCi()) FAIL() << "no Vulkan device in CI: " << ::vkp::test::GpuEnv::get().reason(); \
+        GTEST_SKIP() << "no Vulkan device: " << ::vkp::test::GpuEnv::get().reason();          \
+    }                                                                                         \
+    ::vkp::VulkanDevice& dev = *dev##_ptr

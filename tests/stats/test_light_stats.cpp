@@ -1,0 +1,394 @@
+// Statistical and numerical tests of shaders/shared/light_sampling.h (compiled as C++).
+// For every light kind and several configurations (near, far, grazing, and for spheres the cone,
+// on-surface and inside strategies): (a) chi-square goodness of fit of the sampled directions
+// against pdfXLight, (b) pdfXLight integrates to 1 over the sphere of directions, (c) the pdf
+// returned with each sample equals pdfXLight(dir) evaluated alone, (d) invertXLight round trip.
+// Directions are binned in a frame chosen per light, over a cap or (z, phi) box that contains it
+// (plus cells for the rest of the sphere), so the cells resolve the light however it looks.
+// Significance: each chi-square test runs at statsAlpha() (stat_suite.h: Sidak-corrected so the
+// whole stats suite falsely fails with probability <= 1% for correct code; seeds are fixed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "shared/light_sampling.h"
+#include "stat_suite.h"
+
+namespace {
+
+using namespace vkp::test;
+namespace gpu = vkp::gpu;
+using glm::vec2;
+using glm::vec3;
+
+constexpr int kSamples = 100000;
+constexpr double kPi = 3.14159265358979323846;
+
+/// One light seen from one point, as closures over the shared functions.
+struct LightCase {
+    std::string name;
+    std::function<gpu::LightSample(vec2)> sample;
+    std::function<float(vec3)> pdf;
+    std::function<vec2(vec3)> invert;
+    SphereBinning binning;
+    bool periodicY = false;  ///< xi.y is an azimuth (sphere strategies)
+};
+
+/// Binning for a planar light (Q + a e1 + b e2; a triangle if tri): the frame's axis is the
+/// light's normal, oriented from p towards its plane, so z = cos(angle to the normal) and the
+/// light's image in (z, phi) is a compact region even at grazing angles. If the axis from p hits
+/// the light, its image contains the pole: a cap z >= zMin. Otherwise a (z, phi) box, with the
+/// azimuth measured from the light's centroid so the box does not wrap around +-pi. The bounds
+/// come from a dense grid of points on the light, widened by 5%.
+SphereBinning planarBinning(vec3 p, vec3 Q, vec3 e1, vec3 e2, bool tri) {
+    glm::dvec3 n = glm::normalize(glm::cross(glm::dvec3(e1), glm::dvec3(e2)));
+    glm::dvec3 centroid = glm::dvec3(Q) + (tri ? 1.0 / 3.0 : 0.5) * glm::dvec3(e1 + e2);
+    glm::dvec3 toLight = centroid - glm::dvec3(p);
+    if (glm::dot(n, toLight) < 0.0) n = -n;
+    SphereBinning b = SphereBinning::around(n, -1.0, 20, 40);
+    glm::dvec3 side = toLight - glm::dot(toLight, n) * n;
+    if (glm::length(side) > 1e-9 * glm::length(toLight)) {
+        b.s = glm::normalize(side);
+        b.t = glm::cross(n, b.s);
+    }
+    double zLo = 1.0, zHi = -1.0, phiLo = kPi, phiHi = -kPi;
+    const int m = 64;
+    for (int i = 0; i <= m; ++i) {
+        for (int j = 0; j <= m; ++j) {
+            double a = double(i) / m, c = double(j) / m;
+            if (tri && a + c > 1.0) continue;
+            glm::dvec3 x = glm::dvec3(Q) + a * glm::dvec3(e1) + c * glm::dvec3(e2);
+            glm::dvec2 zp = b.zPhi(x - glm::dvec3(p));
+            zLo = std::min(zLo, zp.x);
+            zHi = std::max(zHi, zp.x);
+            phiLo = std::min(phiLo, zp.y);
+            phiHi = std::max(phiHi, zp.y);
+        }
+    }
+    vec2 ab;
+    bool poleInside = gpu::intersectParallelogram(Q, e1, e2, tri, p, vec3(n), 0.0f, gpu::VKP_FAR,
+                                                  ab) < gpu::VKP_FAR;
+    double dz = 0.05 * (zHi - zLo);
+    if (poleInside) return SphereBinning::around(n, std::max(-1.0, zLo - dz), 20, 40);
+    double dphi = 0.05 * (phiHi - phiLo);
+    b.zMin = std::max(-1.0, zLo - dz);
+    b.zMax = std::min(1.0, zHi + dz);
+    b.phiMin = std::max(-kPi, phiLo - dphi);
+    b.phiMax = std::min(kPi, phiHi + dphi);
+    return b;
+}
+
+LightCase quadCase(const std::string& name, vec3 Q, vec3 u, vec3 v, vec3 p) {
+    LightCase c;
+    c.name = name;
+    c.sample = [=](vec2 xi) { return gpu::sampleQuadLight(Q, u, v, p, xi); };
+    c.pdf = [=](vec3 d) { return gpu::pdfQuadLight(Q, u, v, p, d); };
+    c.invert = [=](vec3 d) { return gpu::invertQuadLight(Q, u, v, p, d); };
+    c.binning = planarBinning(p, Q, u, v, false);
+    return c;
+}
+
+LightCase triangleCase(const std::string& name, vec3 v0, vec3 e1, vec3 e2, vec3 p) {
+    LightCase c;
+    c.name = name;
+    c.sample = [=](vec2 xi) { return gpu::sampleTriangleLight(v0, e1, e2, p, xi); };
+    c.pdf = [=](vec3 d) { return gpu::pdfTriangleLight(v0, e1, e2, p, d); };
+    c.invert = [=](vec3 d) { return gpu::invertTriangleLight(v0, e1, e2, p, d); };
+    c.binning = planarBinning(p, v0, e1, e2, true);
+    return c;
+}
+
+LightCase sphereCase(const std::string& name, vec3 centre, float R, vec3 p) {
+    LightCase c;
+    c.name = name;
+    c.sample = [=](vec2 xi) { return gpu::sampleSphereLight(centre, R, p, xi); };
+    c.pdf = [=](vec3 d) { return gpu::pdfSphereLight(centre, R, p, d); };
+    c.invert = [=](vec3 d) { return gpu::invertSphereLight(centre, R, p, d); };
+    c.periodicY = true;
+    double d = glm::length(glm::dvec3(centre) - glm::dvec3(p));
+    glm::dvec3 axis = d > 0.0 ? (glm::dvec3(centre) - glm::dvec3(p)) / d : glm::dvec3(0, 0, 1);
+    double zMin = -1.0;
+    if (d > R * 1.0001) zMin = std::cos(std::min(kPi, 1.1 * std::asin(R / d) + 1e-3));
+    c.binning = SphereBinning::around(axis, zMin, 20, 40);
+    return c;
+}
+
+/// Runs (a)-(d) on one configuration.
+void checkLight(const LightCase& c, std::uint32_t seed, double integralTol = 5e-4) {
+    SCOPED_TRACE(c.name);
+    UniformSource rng(seed);
+    std::vector<glm::dvec3> dirs;
+    int invalid = 0, pdfMismatch = 0, pdfZeroAlone = 0, invertBad = 0;
+    double worstRel = 0.0;
+    for (int i = 0; i < kSamples; ++i) {
+        vec2 xi = rng.next2();
+        gpu::LightSample s = c.sample(xi);
+        ASSERT_TRUE(std::isfinite(s.pdf) && std::isfinite(s.dist) && std::isfinite(s.dir.x) &&
+                    std::isfinite(s.dir.y) && std::isfinite(s.dir.z));
+        if (s.pdf == 0.0f) {
+            ++invalid;
+            continue;
+        }
+        ASSERT_NEAR(glm::length(s.dir), 1.0f, 1e-5f);
+        ASSERT_GT(s.dist, 0.0f);
+        dirs.emplace_back(s.dir);
+        // (c) the pdf evaluated alone
+        float alone = c.pdf(s.dir);
+        if (alone == 0.0f) {
+            ++pdfZeroAlone;  // the ray cast missed at the light's rim (rounding)
+        } else {
+            double rel = std::fabs(double(alone) / s.pdf - 1.0);
+            worstRel = std::max(worstRel, rel);
+            if (rel > 1e-3) ++pdfMismatch;
+        }
+        // (d) round trip
+        vec2 back = c.invert(s.dir);
+        double ex = std::fabs(double(back.x) - xi.x);
+        double ey = std::fabs(double(back.y) - xi.y);
+        if (c.periodicY) ey = std::min(ey, 1.0 - ey);
+        if (!(std::max(ex, ey) < 1e-3)) ++invertBad;
+    }
+    std::printf(
+        "    [%s] invalid %d, pdf alone = 0: %d, pdf mismatches %d (max rel %.2g), "
+        "inverse off: %d\n",
+        c.name.c_str(), invalid, pdfZeroAlone, pdfMismatch, worstRel, invertBad);
+    EXPECT_LE(invalid, kSamples / 10000);
+    EXPECT_LE(pdfZeroAlone, kSamples / 10000);
+    EXPECT_LE(pdfMismatch, kSamples / 10000);
+    EXPECT_LE(invertBad, kSamples / 1000);
+    // (b) and (a)
+    PdfDir pdf = [&c](const glm::dvec3& d) { return double(c.pdf(vec3(d))); };
+    std::vector<double> cells = integrateDirectionCells(c.binning, pdf, 1e-4, 8, 1);
+    double total = 0.0;
+    for (double p : cells) total += p;
+    std::printf("    [%s] integral of the pdf over the sphere: %.6f\n", c.name.c_str(), total);
+    EXPECT_NEAR(total, 1.0, integralTol);
+    EXPECT_TRUE(passesChi2(chi2TestDirections(dirs, c.binning, cells)));
+}
+
+// ---- Quads --------------------------------------------------------------------------------------
+
+const vec3 kQ(-1.0f, -0.5f, 2.0f), kU(2.0f, 0.0f, 0.0f), kV(0.0f, 1.0f, 0.0f);
+
+TEST(LightStats, QuadNear) {
+    checkLight(quadCase("quad near", kQ, kU, kV, vec3(0.2f, 0.1f, 1.7f)), 201);
+}
+TEST(LightStats, QuadFar) {
+    checkLight(quadCase("quad far", kQ, kU, kV, vec3(3.0f, -4.0f, -30.0f)), 202);
+}
+TEST(LightStats, QuadGrazing) {
+    checkLight(quadCase("quad grazing", kQ, kU, kV, vec3(0.0f, -3.0f, 2.05f)), 203);
+}
+TEST(LightStats, QuadSkewedFromBehind) {
+    // A sheared parallelogram seen from its back side (both faces are sampled).
+    checkLight(quadCase("quad skewed", vec3(0.5f, 0.2f, -1.0f), vec3(1.5f, 0.2f, 0.6f),
+                        vec3(0.9f, 1.1f, -0.2f), vec3(1.0f, 0.5f, 1.0f)),
+               204);
+}
+
+// ---- Triangles ----------------------------------------------------------------------------------
+
+const vec3 kV0(0.0f, 0.0f, 0.0f), kE1(1.0f, 0.0f, 0.2f), kE2(0.3f, 1.2f, 0.0f);
+
+TEST(LightStats, TriangleNear) {
+    checkLight(triangleCase("triangle near", kV0, kE1, kE2, vec3(0.3f, 0.4f, 0.5f)), 205);
+}
+TEST(LightStats, TriangleFar) {
+    checkLight(triangleCase("triangle far", kV0, kE1, kE2, vec3(-10.0f, 20.0f, 15.0f)), 206);
+}
+TEST(LightStats, TriangleGrazing) {
+    // p 0.05 above the triangle's plane, about 1.3 away from the triangle.
+    vec3 n = glm::normalize(glm::cross(kE1, kE2));
+    vec3 p = kV0 - 1.2f * kE1 + 0.4f * kE2 + 0.05f * n;
+    checkLight(triangleCase("triangle grazing", kV0, kE1, kE2, p), 207);
+}
+
+// ---- Spheres ------------------------------------------------------------------------------------
+
+const vec3 kC(0.3f, -0.2f, 1.0f);
+
+TEST(LightStats, SphereConeNear) {
+    checkLight(sphereCase("sphere cone d=1.5R", kC, 1.0f, kC + vec3(0.0f, 1.5f, 0.0f)), 208);
+}
+TEST(LightStats, SphereConeJustOutside) {
+    // d = 1.001 R: theta_max ~ 87.4 degrees; d^2 - R^2 would lose 3 digits if formed directly.
+    vec3 dir = glm::normalize(vec3(1.0f, -2.0f, 0.5f));
+    checkLight(sphereCase("sphere cone d=1.001R", kC, 2.0f, kC + 2.002f * dir), 209);
+}
+TEST(LightStats, SphereConeFar) {
+    checkLight(sphereCase("sphere cone d=40R", kC, 0.5f, kC + vec3(15.0f, -10.0f, 25.0f) * 0.65f),
+               210);
+}
+TEST(LightStats, SphereOnSurface) {
+    vec3 dir = glm::normalize(vec3(1.0f, 2.0f, 3.0f));
+    vec3 p = kC + 1.5f * dir;
+    ASSERT_EQ(gpu::sphereLightStrategy(glm::length(kC - p), 1.5f), gpu::SPHERE_LIGHT_SURFACE);
+    checkLight(sphereCase("sphere on surface", kC, 1.5f, p), 211);
+}
+TEST(LightStats, SphereInsideOffCentre) {
+    vec3 p = kC + vec3(0.4f, -0.3f, 0.2f);
+    ASSERT_EQ(gpu::sphereLightStrategy(glm::length(kC - p), 1.0f), gpu::SPHERE_LIGHT_INSIDE);
+    checkLight(sphereCase("sphere inside", kC, 1.0f, p), 212);
+}
+TEST(LightStats, SphereInsideNearSurface) {
+    vec3 p = kC + 0.999f * glm::normalize(vec3(-1.0f, 0.5f, 0.25f));
+    checkLight(sphereCase("sphere inside d=0.999R", kC, 1.0f, p), 213);
+}
+TEST(LightStats, SphereAtCentre) { checkLight(sphereCase("sphere at centre", kC, 1.0f, kC), 214); }
+
+// ---- Sphere light: the fallback strategies are the area densities they claim to be ------------
+
+// On the surface and inside, the returned pdf must equal the solid-angle form of uniform area
+// sampling, dist^2 / (|cos_light| 4 pi R^2), evaluated from the sample's own point and normal.
+TEST(LightStats, SphereFallbacksAreUniformAreaDensities) {
+    struct Where {
+        float d;
+        const char* name;
+    };
+    const float R = 1.5f;
+    for (Where w : {Where{R, "on surface"}, Where{R * 0.999f, "inside near surface"},
+                    Where{R * 0.5f, "inside"}, Where{0.0f, "centre"}}) {
+        SCOPED_TRACE(w.name);
+        vec3 p = kC + w.d * glm::normalize(vec3(0.2f, -1.0f, 0.4f));
+        UniformSource rng(215);
+        for (int i = 0; i < 20000; ++i) {
+            gpu::LightSample s = gpu::sampleSphereLight(kC, R, p, rng.next2());
+            if (s.pdf == 0.0f) continue;
+            glm::dvec3 x = glm::dvec3(p) + double(s.dist) * glm::dvec3(s.dir);
+            glm::dvec3 n = (x - glm::dvec3(kC)) / double(R);
+            ASSERT_NEAR(glm::length(n), 1.0, 1e-4);  // the point is on the sphere
+            double cosL = std::fabs(glm::dot(n, glm::dvec3(s.dir)));
+            double areaForm = double(s.dist) * s.dist / (cosL * 4.0 * kPi * R * R);
+            ASSERT_NEAR(s.pdf / areaForm, 1.0, 2e-3) << "dist " << s.dist << " cos " << cosL;
+        }
+    }
+}
+
+// In the cone strategy the sampled point is the NEAR intersection of the ray with the sphere.
+TEST(LightStats, SphereConeDistanceIsNearIntersection) {
+    const float R = 0.7f;
+    for (float k : {1.0002f, 1.01f, 2.0f, 100.0f}) {
+        vec3 p = kC + (k * R) * glm::normalize(vec3(0.5f, 0.5f, -1.0f));
+        UniformSource rng(216);
+        for (int i = 0; i < 20000; ++i) {
+            gpu::LightSample s = gpu::sampleSphereLight(kC, R, p, rng.next2());
+            ASSERT_GT(s.pdf, 0.0f);
+            glm::dvec3 x = glm::dvec3(p) + double(s.dist) * glm::dvec3(s.dir);
+            ASSERT_NEAR(glm::length(x - glm::dvec3(kC)) / R, 1.0, 1e-4) << k;
+            // the point faces p: the normal there points back towards p (or is tangent)
+            ASSERT_LE(glm::dot(x - glm::dvec3(kC), glm::dvec3(s.dir)), 1e-4 * R) << k;
+        }
+    }
+}
+
+// ---- No NaN or Inf, whatever the geometry
+// ---------------------------------------------------------
+
+bool finiteSample(const gpu::LightSample& s) {
+    return std::isfinite(s.pdf) && s.pdf >= 0.0f && std::isfinite(s.dist) && s.dist >= 0.0f &&
+           std::isfinite(s.dir.x) && std::isfinite(s.dir.y) && std::isfinite(s.dir.z);
+}
+
+TEST(LightStats, SphereNumericsNeverProduceNanOrInf) {
+    UniformSource rng(217);
+    struct Setup {
+        vec3 c;
+        float R;
+    };
+    const float nan = std::nanf("");
+    for (Setup st : {Setup{vec3(0.0f), 1.0f}, Setup{vec3(1e3f, -2e3f, 5e2f), 1e-3f},
+                     Setup{vec3(-3.0f, 4.0f, 1.0f), 1e3f}}) {
+        // Distances around every strategy boundary, exactly on the sphere, at the centre, far.
+        std::vector<float> rel = {0.0f,
+                                  1e-7f,
+                                  0.5f,
+                                  1.0f - 1e-3f,
+                                  1.0f - 1.0001e-4f,
+                                  1.0f - 1e-4f,
+                                  1.0f - 1e-6f,
+                                  1.0f - 6e-8f,
+                                  1.0f,
+                                  1.0f + 6e-8f,
+                                  1.0f + 1e-6f,
+                                  1.0f + 1e-4f,
+                                  1.0f + 1.0001e-4f,
+                                  1.0f + 1e-3f,
+                                  2.0f,
+                                  1e3f,
+                                  1e9f};
+        for (float k : rel) {
+            for (int j = 0; j < 200; ++j) {
+                vec3 p = st.c + (k * st.R) * gpu::sampleUniformSphere(rng.next2());
+                for (int i = 0; i < 10; ++i) {
+                    gpu::LightSample s = gpu::sampleSphereLight(st.c, st.R, p, rng.next2());
+                    ASSERT_TRUE(finiteSample(s)) << k << " R " << st.R;
+                    float alone = gpu::pdfSphereLight(st.c, st.R, p, s.dir);
+                    ASSERT_TRUE(std::isfinite(alone) && alone >= 0.0f);
+                    vec3 randomDir = gpu::sampleUniformSphere(rng.next2());
+                    float other = gpu::pdfSphereLight(st.c, st.R, p, randomDir);
+                    ASSERT_TRUE(std::isfinite(other) && other >= 0.0f);
+                    vec2 inv = gpu::invertSphereLight(st.c, st.R, p, s.dir);
+                    ASSERT_TRUE(std::isfinite(inv.x) && std::isfinite(inv.y));
+                }
+            }
+        }
+    }
+    // Far away: d = 1e6, R = 1e-3 (solid angle ~3e-18 sr): a finite, positive pdf.
+    vec3 far(1e6f, 0.0f, 0.0f);
+    gpu::LightSample s = gpu::sampleSphereLight(vec3(0.0f), 1e-3f, far, vec2(0.3f, 0.7f));
+    ASSERT_TRUE(finiteSample(s));
+    EXPECT_GT(s.pdf, 1e16f);
+    EXPECT_NEAR(s.dist, 1e6f, 1.0f);
+    EXPECT_NEAR(s.dir.x, -1.0f, 1e-6f);
+    // Degenerate spheres and NaN positions: no sample.
+    for (float R : {0.0f, -1.0f, nan}) {
+        gpu::LightSample z =
+            gpu::sampleSphereLight(vec3(0.0f), R, vec3(2.0f, 0.0f, 0.0f), vec2(0.5f));
+        EXPECT_TRUE(finiteSample(z));
+        EXPECT_EQ(z.pdf, 0.0f);
+        EXPECT_EQ(
+            gpu::pdfSphereLight(vec3(0.0f), R, vec3(2.0f, 0.0f, 0.0f), vec3(-1.0f, 0.0f, 0.0f)),
+            0.0f);
+    }
+    gpu::LightSample z =
+        gpu::sampleSphereLight(vec3(0.0f), 1.0f, vec3(nan, 0.0f, 0.0f), vec2(0.5f));
+    EXPECT_TRUE(finiteSample(z));
+    EXPECT_EQ(z.pdf, 0.0f);
+}
+
+TEST(LightStats, PlanarNumericsNeverProduceNanOrInf) {
+    UniformSource rng(218);
+    // p on the quad's plane, on the quad itself, far away; degenerate quads and triangles.
+    std::vector<vec3> points = {
+        vec3(0.0f, 0.0f, 2.0f),        kQ, kQ + kU, vec3(5.0f, 5.0f, 2.0f), vec3(0.0f, 0.0f, 1e7f),
+        vec3(0.0f, 0.0f, 2.0f + 1e-6f)};
+    struct Quad {
+        vec3 Q, u, v;
+    };
+    for (Quad q : {Quad{kQ, kU, kV}, Quad{kQ, vec3(0.0f), kV}, Quad{kQ, kU, 2.0f * kU},
+                   Quad{kQ, vec3(1e-20f, 0.0f, 0.0f), kV}}) {
+        for (const vec3& p : points) {
+            for (int i = 0; i < 500; ++i) {
+                vec2 xi = rng.next2();
+                gpu::LightSample a = gpu::sampleQuadLight(q.Q, q.u, q.v, p, xi);
+                gpu::LightSample b = gpu::sampleTriangleLight(q.Q, q.u, q.v, p, xi);
+                ASSERT_TRUE(finiteSample(a) && finiteSample(b));
+                vec3 d = gpu::sampleUniformSphere(rng.next2());
+                for (float f : {gpu::pdfQuadLight(q.Q, q.u, q.v, p, d),
+                                gpu::pdfTriangleLight(q.Q, q.u, q.v, p, d),
+                                gpu::pdfQuadLight(q.Q, q.u, q.v, p, a.dir),
+                                gpu::pdfTriangleLight(q.Q, q.u, q.v, p, b.dir)}) {
+                    ASSERT_TRUE(std::isfinite(f) && f >= 0.0f);
+                }
+            }
+        }
+    }
+    // p in the plane of the quad: every sample is edge-on, no valid sample.
+    gpu::LightSample s = gpu::sampleQuadLight(kQ, kU, kV, vec3(5.0f, 5.0f, 2.0f), vec2(0.5f));
+    EXPECT_EQ(s.pdf, 0.0f);
+}
+
+}  // namespace

@@ -1,0 +1,73 @@
+// Command-line parsing: every flag, and one clear usage error for each kind of mistake.
+#include <gtest/gtest.h>
+
+#include "cli/args.h"
+#include "core/errors.h"
+
+namespace vkp {
+namespace {
+
+CliArgs parse(std::vector<std::string> a) { return parseArgs(a); }
+
+std::string errorOf(std::vector<std::string> a) {
+    try {
+        parseArgs(a);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(CliArgs, RenderWithEveryFlag) {
+    const CliArgs a = parse({"render", "s.json", "-o", "a.png", "-o", "b.exr", "--spp", "16", "--time", "2.5", "--width", "64",
+                             "--height", "32", "--max-depth", "7", "--seed", "9", "--sampler", "light", "--variant", "full",
+                             "--device", "llvm", "--validate", "--exposure", "-1", "--dump-every", "4", "--dump-dir", "d",
+                             "--dump-format", "exr", "--quiet", "--samples-per-dispatch", "2"});
+    EXPECT_EQ(a.command, Command::Render);
+    EXPECT_EQ(a.scene, "s.json");
+    ASSERT_EQ(a.outputs.size(), 2u);
+    EXPECT_EQ(*a.spp, 16u);
+    EXPECT_DOUBLE_EQ(a.timeLimit, 2.5);
+    EXPECT_EQ(*a.width, 64u);
+    EXPECT_EQ(*a.height, 32u);
+    EXPECT_EQ(*a.maxDepth, 7u);
+    EXPECT_EQ(*a.seed, 9u);
+    EXPECT_EQ(a.sampler, Sampler::Light);
+    EXPECT_TRUE(a.fullVariant);
+    EXPECT_EQ(a.device, "llvm");
+    EXPECT_TRUE(a.validate);
+    EXPECT_DOUBLE_EQ(a.exposure, -1.0);
+    EXPECT_EQ(a.dumpEvery, 4u);
+    EXPECT_EQ(a.dumpDir, "d");
+    ASSERT_EQ(a.dumpFormats.size(), 2u);
+    EXPECT_EQ(a.dumpFormats[1], ImageFormat::Exr);
+    EXPECT_TRUE(a.quiet);
+    EXPECT_EQ(a.samplesPerDispatch, 2u);
+}
+
+TEST(CliArgs, DefaultsAndOtherCommands) {
+    const CliArgs a = parse({"render", "s.json"});
+    EXPECT_EQ(a.sampler, Sampler::Mixture);
+    EXPECT_FALSE(a.spp);
+    EXPECT_EQ(parse({}).command, Command::Help);
+    EXPECT_EQ(parse({"--version"}).command, Command::Version);
+    EXPECT_EQ(parse({"devices", "--device", "1"}).command, Command::Devices);
+    EXPECT_EQ(parse({"info", "s.json"}).command, Command::Info);
+}
+
+TEST(CliArgs, UsageErrors) {
+    EXPECT_NE(errorOf({"paint"}).find("unknown command 'paint'"), std::string::npos);
+    EXPECT_NE(errorOf({"render"}).find("needs a scene file"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--spp"}).find("--spp needs a value"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--spp", "0"}).find("--spp wants a whole number"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--spp", "12x"}).find("got '12x'"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--time", "nan"}).find("--time"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--sampler", "mis2"}).find("--sampler must be"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--bogus"}).find("unknown option '--bogus'"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "a.json", "b.json"}).find("unexpected argument 'b.json'"), std::string::npos);
+    EXPECT_NE(errorOf({"info", "a.json", "--spp", "3"}).find("only valid with 'vkpath render'"), std::string::npos);
+    EXPECT_EQ(errorOf({"render", "s.json", "--spp", "1"}), "");
+}
+
+}  // namespace
+}  // namespace vkp

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
+# Idempotent: does nothing (and needs no network) when everything is already installed.
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libgtest-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+echo "deps: installing ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends "${missing[@]}"
