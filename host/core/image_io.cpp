@@ -6,10 +6,7 @@
 #include <cctype>
 #include <cerrno>
 #include <climits>
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
-#include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <system_error>

@@ -36,7 +36,7 @@ const char* imageFormatExtension(ImageFormat format);
 /// empty or inconsistent image or one too large for the format's library (a programming error);
 /// `name` only labels error messages.
 /// EXR/PFM store the floats exactly (NaN and inf included); HDR maps NaN and negatives to 0 and
-/// +inf to the largest RGBE value; PNG: see WriteOptions::exposure and linearToSrgb8.
+/// values above 1e38 (+inf included) to 1e38; PNG: see WriteOptions::exposure and linearToSrgb8.
 void encodeImage(const Image& image, ImageFormat format, const WriteOptions& options, std::ostream& out,
                  const std::string& name = "image");
 

@@ -18,6 +18,7 @@ VKP_BEGIN
 /// Azimuth of (x, y) as a fraction of a full turn, in [0,1): the inverse of phi = 2 pi u.
 /// (0,0) maps to 0.
 VKP_FN float azimuthToUnit(float x, float y) {
+    if (x == 0.0f && y == 0.0f) return 0.0f;     // GLSL leaves atan(0, 0) undefined
     float a = atan(y, x) * (1.0f / VKP_TWO_PI);  // (-1/2, 1/2]
     if (a < 0.0f) a += 1.0f;
     return (a < 1.0f) ? a : 0.0f;                // a tiny negative a rounds to 1.0: wrap
@@ -119,7 +120,10 @@ VKP_FN float pdfUniformCone(vec3 w, float oneMinusCosMax) {
 
 /// Inverse of sampleUniformCone for a unit local direction inside the cone.
 VKP_FN vec2 invertUniformCone(vec3 w, float oneMinusCosMax) {
-    return vec2(min(oneMinusCosTheta(w) / oneMinusCosMax, 1.0f), azimuthToUnit(w.x, w.y));
+    // An empty cone (oneMinusCosMax = 0) has no interior: 0 rather than 0/0, which GLSL's and
+    // glm's min would resolve differently.
+    float ux = (oneMinusCosMax > 0.0f) ? min(oneMinusCosTheta(w) / oneMinusCosMax, 1.0f) : 0.0f;
+    return vec2(ux, azimuthToUnit(w.x, w.y));
 }
 
 // ---- Uniform unit disk: concentric mapping (Shirley & Chiu, "A Low Distortion Map Between Disk

@@ -1,0 +1,87 @@
+// The vkpath binary end to end on the device: outputs, progressive dumps, --time, info, devices,
+// and the exit code for a device that does not exist. Validation layer on (--validate).
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/image_io.h"
+#include "gpu_env.h"
+#include "run_process.h"
+#include "test_paths.h"
+
+namespace vkp::test {
+namespace {
+
+struct CliRender : ::testing::Test {
+    std::filesystem::path dir = scratchDir("cli_render");
+    ProcessResult run(const std::vector<std::string>& args) { return runProcess(vkpathBinary(), args, dir); }
+    std::string scene(const char* name) { return (scenesDir() / name).string(); }
+};
+
+TEST_F(CliRender, WritesEveryRequestedFormat) {
+    VKP_REQUIRE_DEVICE(dev);
+    for (const char* f : {"o.png", "o.exr", "o.pfm", "o.hdr"}) std::filesystem::remove(dir / f);
+    const ProcessResult r = run({"render", scene("cornell-book3.json"), "--validate", "--spp", "2", "--width", "40",
+                                 "--height", "30", "-o", "o.png", "-o", "o.exr", "-o", "o.pfm", "-o", "o.hdr"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* f : {"o.png", "o.exr", "o.pfm", "o.hdr"}) EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+    const Image img = readImage(dir / "o.pfm");
+    EXPECT_EQ(img.width, 40u);
+    EXPECT_EQ(img.height, 30u);
+    EXPECT_NE(r.err.find("2 spp"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("0 non-finite samples dropped"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("rays/s"), std::string::npos) << r.err;
+}
+
+TEST_F(CliRender, ProgressiveDumps) {
+    VKP_REQUIRE_DEVICE(dev);
+    std::filesystem::remove_all(dir / "frames");
+    const ProcessResult r = run({"render", scene("cornell-classic.json"), "--validate", "--spp", "6", "--width", "16",
+                                 "--height", "16", "--dump-every", "2", "--dump-dir", "frames", "--dump-format", "pfm",
+                                 "-o", "final.pfm", "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* f : {"frame-000002.png", "frame-000004.png", "frame-000006.png", "frame-000002.pfm",
+                          "frame-000006.pfm"})
+        EXPECT_TRUE(std::filesystem::exists(dir / "frames" / f)) << f;
+    // The last dump is the final image.
+    const Image last = readImage(dir / "frames" / "frame-000006.pfm");
+    const Image fin = readImage(dir / "final.pfm");
+    EXPECT_EQ(last.rgb, fin.rgb);
+    // A later frame differs from an earlier one (more samples).
+    EXPECT_NE(readImage(dir / "frames" / "frame-000002.pfm").rgb, fin.rgb);
+}
+
+TEST_F(CliRender, TimeLimitStopsBeforeSpp) {
+    VKP_REQUIRE_DEVICE(dev);
+    const ProcessResult r = run({"render", scene("cornell-book3.json"), "--spp", "1000000", "--time", "3", "--width",
+                                 "32", "--height", "32", "-o", "t.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "t.png"));
+    EXPECT_EQ(r.err.find("1000000 spp in"), std::string::npos) << r.err;
+}
+
+TEST_F(CliRender, InfoNamesCountsBvhAndVariant) {
+    const ProcessResult r = run({"info", scene("cornell-book3.json")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("13 (1 spheres, 12 quads, 0 triangles)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 sampled objects (1 emitting)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("SAH cost"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("materials:lambertian+dielectric+emission"), std::string::npos) << r.out;
+}
+
+TEST_F(CliRender, DevicesAndBadDeviceSelection) {
+    VKP_REQUIRE_DEVICE(dev);
+    ProcessResult r = run({"devices", "--validate"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find(dev.info().name), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(default)"), std::string::npos) << r.out;
+    r = run({"render", scene("cornell-book3.json"), "--device", "99", "-o", "never.png"});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "never.png"));
+    r = run({"render", scene("cornell-book3.json"), "--device", "no-such-gpu-name", "-o", "never.png"});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+}
+
+}  // namespace
+}  // namespace vkp::test
