@@ -3,6 +3,7 @@ find_package(Vulkan REQUIRED COMPONENTS glslangValidator)
 find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(tinyexr REQUIRED)
+find_package(TinyGLTF REQUIRED)                      # libtinygltf-dev: a shared library (no TINYGLTF_IMPLEMENTATION)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)   # libstb-dev: headers under <stb/...> + libstb
 find_package(Threads REQUIRED)

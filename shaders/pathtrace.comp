@@ -1,11 +1,13 @@
 #version 460
 // vkpath's path tracer: one invocation per pixel adds push.batch.y samples to that pixel's sums.
-// Unidirectional path tracing ("Ray Tracing: The Rest of Your Life", sec. 2-12) with three ways
-// to choose the direction at a diffuse vertex (SAMPLER, a specialization constant):
+// Unidirectional path tracing ("Ray Tracing: The Rest of Your Life", sec. 2-12) with four ways
+// to sample at a diffuse vertex (SAMPLER, a specialization constant):
 //   bsdf    - cosine-weighted; emission counted wherever a ray hits it;
-//   light   - next-event estimation: one sampled light + shadow ray; emission found by the
-//             continuing cosine-sampled ray is then skipped (it was already counted);
-//   mixture - the book's mixture_pdf: 0.5 cosine + 0.5 light (picked uniformly), pdf the sum.
+//   light   - next-event estimation: one emitter picked by power + shadow ray; emission found by
+//             the continuing cosine-sampled ray is then skipped (it was already counted);
+//   mixture - the book's mixture_pdf: 0.5 cosine + 0.5 light (picked uniformly), pdf the sum;
+//   mis     - the light sample of `light` and the cosine sample both count, each weighted by the
+//             power heuristic (Veach 1997, ch. 9), the light pdf including its pick probability.
 // Every sample's random numbers depend only on (pixel, sample index, seed), and each sample is added
 // to the running sums in sample order, so any split of samples over dispatches gives the same bits.
 #extension GL_GOOGLE_include_directive : require
@@ -21,10 +23,22 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/scene_lights.glsl"
 #include "lib/traverse.glsl"
 
-struct PathResult {
-    vec3 radiance;
-    uint rays;
-    bool cut;  // stopped by the loop-pass guard (lavapipe's silent loop limit is near)
+// One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
+// radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
+// regeneration"). On lavapipe a loop runs until the last of its 8 lanes is done, so keeping every
+// lane busy with the next sample, instead of waiting for the longest path, is what makes several
+// samples per dispatch pay.
+struct PathState {
+    vec3 o;           // ray origin (world units)
+    vec3 d;           // unit ray direction
+    vec3 throughput;  // product of f cos / pdf so far
+    vec3 radiance;    // radiance gathered so far
+    uint depth;       // rays traced along the path so far (camera ray = 1)
+    uint rng;
+    bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
+    vec3 prevX;          // mis: the diffuse vertex the current ray left from
+    float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
+                         // the camera or a specular bounce (emission then counts fully)
 };
 
 /// Radiance emitted by material m towards direction -d at a surface with geometric normal n.
@@ -35,106 +49,154 @@ vec3 emitted(GpuMaterial m, uint mflags, vec3 d, vec3 n) {
     return (front || !oneSided) ? vec3(m.m1.x, m.m1.y, m.m1.z) : vec3(0.0f);
 }
 
-PathResult tracePath(vec3 o, vec3 d, inout uint rng, inout uint passes) {
-    PathResult r;
-    r.radiance = vec3(0.0f);
-    r.rays = 0u;
-    r.cut = false;
-    vec3 throughput = vec3(1.0f);
-    bool countEmission = true;  // false right after a diffuse vertex that did next-event estimation
-    uint maxDepth = frame.size.z;
-    for (uint depth = 0u; depth < maxDepth; ++depth) {
-        passes++;
-        uint prim;
-        float t;
-        vec2 ab;
-        r.rays++;
-        bool hit = traceClosest(o, d, 0.0f, VKP_FAR, prim, t, ab, passes);
-        if (passes >= VKP_MAX_PASSES) { r.cut = true; break; }
-        if (!hit) {
-            r.radiance += throughput * vec3(frame.background.x, frame.background.y, frame.background.z);
-            break;
-        }
-        GpuPrim p = fetchPrim(prim);
-        vec3 x = o + t * d;
-        vec3 ng = primNormal(p, x);
-        bool frontFace = dot(d, ng) < 0.0f;
-        vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
-        GpuMaterial m = fetchMaterial(primMaterial(p));
-        uint mflags = floatBitsToUint(m.m0.w);
-        uint mtype = mflags & 15u;
-        vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
-        if (countEmission) r.radiance += throughput * emitted(m, mflags, d, ng);
-        countEmission = true;
-        if (HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT) break;  // lights do not scatter
-
-        vec3 newDir = d;
-        if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
-            float uStrategy = rngNext(rng);
-            vec2 u2 = rngNext2(rng);
-            vec3 xo = offsetRayOrigin(x, ns);
-            if (SAMPLER == SAMPLER_LIGHT && lightCount() > 0u) {
-                // Next-event estimation at this vertex, then continue with a cosine sample.
-                float pickPdf;
-                GpuPrim lp = fetchPrim(floatBitsToUint(fetchLight(pickLight(uStrategy, pickPdf)).l0.x));
-                LightSample ls = sampleLightPrim(lp, x, rngNext2(rng));
-                float cosL = dot(ls.dir, ns);
-                GpuMaterial lm = fetchMaterial(primMaterial(lp));
-                uint lflags = floatBitsToUint(lm.m0.w);
-                if (ls.pdf > 0.0f && cosL > 0.0f && (lflags & MATF_EMITS) != 0u) {
-                    vec3 lx = x + ls.dist * ls.dir;
-                    vec3 le = emitted(lm, lflags, ls.dir, primNormal(lp, lx));
-                    r.rays++;
-                    if (max(le.x, max(le.y, le.z)) > 0.0f &&
-                        !traceAny(xo, ls.dir, 0.0f, ls.dist * 0.9999f, passes))
-                        r.radiance += throughput * albedo * VKP_INV_PI * cosL * le / (ls.pdf * pickPdf);
-                }
-                countEmission = false;
-                newDir = sampleLambertian(ns, u2);
-                throughput *= albedo;
-            } else if (SAMPLER == SAMPLER_MIXTURE && lightCount() > 0u) {
-                if (uStrategy < 0.5f) {
-                    newDir = sampleLambertian(ns, u2);
-                } else {
-                    float pickPdf;
-                    uint li = pickLight(2.0f * uStrategy - 1.0f, pickPdf);
-                    LightSample ls = sampleLightPrim(fetchPrim(floatBitsToUint(fetchLight(li).l0.x)), x, u2);
-                    newDir = ls.dir;
-                    if (!(ls.pdf > 0.0f)) break;  // no direction from this strategy: the sample is 0
-                }
-                float cosN = dot(newDir, ns);
-                if (!(cosN > 0.0f)) break;  // below the surface: f = 0
-                float pdf = 0.5f * pdfCosineHemisphere(cosN) + 0.5f * pdfLights(x, newDir, passes);
-                throughput *= albedo * VKP_INV_PI * cosN / pdf;
-            } else {
-                newDir = sampleLambertian(ns, u2);
-                throughput *= albedo;  // (albedo/pi) cos / (cos/pi)
-            }
-            o = xo;
-        } else if (HAS_METAL && mtype == MAT_METAL) {
-            bool absorbed;
-            newDir = scatterMetal(d, ns, m.m1.w, vec3(rngNext(rng), rngNext(rng), rngNext(rng)), absorbed);
-            if (absorbed) break;
-            throughput *= albedo;
-            o = offsetRayOrigin(x, ns);
-        } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
-            newDir = scatterDielectric(d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(rng));
-            o = offsetRayOrigin(x, dot(newDir, ns) > 0.0f ? ns : -ns);
-        }
-        d = newDir;
-
-        // Russian roulette (unbiased): continue with probability q, divide by q.
-        if (depth + 1u >= frame.counts.y) {
-            float q = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95f);
-            if (rngNext(rng) >= q) break;
-            throughput /= q;
-        }
+/// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
+/// over the pixel's square and, if the variant has it, a point on the defocus disk.
+PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
+    PathState s;
+    s.rng = rngInit(pixel, sampleIndex, frame.size.w);
+    vec2 jitter = rngNext2(s.rng) - vec2(0.5f);
+    vec3 pixel00 = vec3(frame.pixel00.x, frame.pixel00.y, frame.pixel00.z);
+    vec3 du = vec3(frame.pixelDu.x, frame.pixelDu.y, frame.pixelDu.z);
+    vec3 dv = vec3(frame.pixelDv.x, frame.pixelDv.y, frame.pixelDv.z);
+    vec3 target = pixel00 + (float(pix.x) + jitter.x) * du + (float(pix.y) + jitter.y) * dv;
+    s.o = vec3(frame.origin.x, frame.origin.y, frame.origin.z);
+    vec2 lens = rngNext2(s.rng);  // drawn in every variant, so variants see the same random numbers
+    if (HAS_DEFOCUS) {
+        vec2 disk = sampleUniformDisk(lens);
+        s.o += disk.x * vec3(frame.defocusU.x, frame.defocusU.y, frame.defocusU.z) +
+               disk.y * vec3(frame.defocusV.x, frame.defocusV.y, frame.defocusV.z);
     }
-    return r;
+    s.d = normalize(target - s.o);
+    s.throughput = vec3(1.0f);
+    s.radiance = vec3(0.0f);
+    s.depth = 0u;
+    s.countEmission = true;
+    s.prevX = s.o;
+    s.prevBsdfPdf = 0.0f;
+    return s;
+}
+
+/// Trace the path's current ray and scatter at what it hits. Returns true when the path has ended
+/// (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
+bool bounce(inout PathState s, inout uint rays, inout uint passes) {
+    uint prim;
+    float t;
+    vec2 ab;
+    rays++;
+    s.depth++;
+    bool hit = traceClosest(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, passes);
+    if (!hit) {
+        s.radiance += s.throughput * vec3(frame.background.x, frame.background.y, frame.background.z);
+        return true;
+    }
+    GpuPrim p = fetchPrim(prim);
+    vec3 x = primHitPoint(p, s.o, s.d, t, ab);  // from the primitive, not o + t d (shared/ray_offset.h)
+    vec3 ng = primNormal(p, x);
+    bool frontFace = dot(s.d, ng) < 0.0f;
+    vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
+    GpuMaterial m = fetchMaterial(primMaterial(p));
+    uint mflags = floatBitsToUint(m.m0.w);
+    uint mtype = mflags & 15u;
+    vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
+    if (SAMPLER == SAMPLER_MIS) {
+        // Emission found by BSDF sampling, weighted against the light sample that could have found
+        // it from the previous vertex (power heuristic).
+        vec3 le = emitted(m, mflags, s.d, ng);
+        float w = 1.0f;
+        int li = primLight(p);
+        if (s.prevBsdfPdf > 0.0f && li >= 0)
+            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * pdfLightPrim(p, s.prevX, s.d));
+        s.radiance += s.throughput * le * w;
+    } else if (s.countEmission) {
+        s.radiance += s.throughput * emitted(m, mflags, s.d, ng);
+    }
+    s.countEmission = true;
+    s.prevBsdfPdf = 0.0f;
+    if (HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
+    if (s.depth >= frame.size.z) return true;                     // max_depth rays per path
+
+    vec3 newDir = s.d;
+    if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
+        float uStrategy = rngNext(s.rng);
+        vec2 u2 = rngNext2(s.rng);
+        vec3 xo = offsetRayOrigin(x, ns);
+        if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && emitterCount() > 0u) {
+            // Next-event estimation: one emitter picked by power, one point on it, a shadow ray.
+            float pickPdf;
+            uint lprim = floatBitsToUint(fetchLight(pickLightPower(uStrategy, pickPdf)).l0.x);
+            GpuPrim lp = fetchPrim(lprim);
+            LightSample ls = sampleLightPrim(lp, x, rngNext2(s.rng));
+            float cosL = dot(ls.dir, ns);
+            // A flat light cannot light itself: no sample of it from a point on it (rounding may put
+            // the hit point on either side of its plane). A sphere can (from inside).
+            bool self = lprim == prim && primKind(p) != PRIM_SPHERE;
+            if (ls.pdf > 0.0f && cosL > 0.0f && !self) {
+                GpuMaterial lm = fetchMaterial(primMaterial(lp));
+                vec3 lx = x + ls.dist * ls.dir;
+                vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
+                if (max(le.x, max(le.y, le.z)) > 0.0f) {  // no shadow ray towards a light's back
+                    rays++;
+                    vec4 sr = shadowRayTo(xo, lx, primNormal(lp, lx));  // between offset end points
+                    if (!traceAny(xo, vec3(sr.x, sr.y, sr.z), 0.0f, sr.w, passes)) {
+                        float pl = ls.pdf * pickPdf;
+                        float w = (SAMPLER == SAMPLER_MIS) ? powerHeuristic(pl, pdfCosineHemisphere(cosL)) : 1.0f;
+                        s.radiance += s.throughput * albedo * VKP_INV_PI * cosL * le * (w / pl);
+                    }
+                }
+            }
+            // Continue with a cosine sample; `light` then ignores the emission it finds, `mis`
+            // weights it.
+            s.countEmission = (SAMPLER == SAMPLER_MIS);
+            newDir = sampleLambertian(ns, u2);
+            s.prevX = x;
+            s.prevBsdfPdf = pdfCosineHemisphere(dot(newDir, ns));
+            s.throughput *= albedo;
+        } else if (SAMPLER == SAMPLER_MIXTURE && lightCount() > 0u) {
+            if (uStrategy < 0.5f) {
+                newDir = sampleLambertian(ns, u2);
+            } else {
+                float pickPdf;
+                uint li = pickLightUniform(2.0f * uStrategy - 1.0f, pickPdf);
+                LightSample ls = sampleLightPrim(fetchPrim(floatBitsToUint(fetchLight(li).l0.x)), x, u2);
+                newDir = ls.dir;
+                if (!(ls.pdf > 0.0f)) return true;  // no direction from this strategy: the sample is 0
+            }
+            float cosN = dot(newDir, ns);
+            if (!(cosN > 0.0f)) return true;  // below the surface: f = 0
+            float pdf = 0.5f * pdfCosineHemisphere(cosN) + 0.5f * pdfLights(x, newDir, passes);
+            s.throughput *= albedo * VKP_INV_PI * cosN / pdf;
+        } else {
+            newDir = sampleLambertian(ns, u2);
+            s.throughput *= albedo;  // (albedo/pi) cos / (cos/pi)
+        }
+        s.o = xo;
+    } else if (HAS_METAL && mtype == MAT_METAL) {
+        bool absorbed;
+        newDir = scatterMetal(s.d, ns, m.m1.w, vec3(rngNext(s.rng), rngNext(s.rng), rngNext(s.rng)), absorbed);
+        if (absorbed) return true;
+        s.throughput *= albedo;
+        s.o = offsetRayOrigin(x, ns);
+    } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
+        newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
+        s.o = offsetRayOrigin(x, dot(newDir, ns) > 0.0f ? ns : -ns);
+    }
+    s.d = newDir;
+
+    // Russian roulette (unbiased): continue with probability q, divide by q.
+    if (s.depth >= frame.counts.y) {
+        float q = min(max(s.throughput.x, max(s.throughput.y, s.throughput.z)), 0.95f);
+        if (rngNext(s.rng) >= q) return true;
+        s.throughput /= q;
+    }
+    return false;
 }
 
 void main() {
-    uvec2 pix = gl_GlobalInvocationID.xy;
+    // Scrambled tile order: lavapipe hands each thread a contiguous run of workgroups, so a
+    // permutation that spreads each run over the image balances cheap and expensive regions.
+    uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
+    uint tile = (group * frame.tiles.z) % frame.tiles.y;  // host keeps the product below 2^32
+    uvec2 pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * 8u + gl_LocalInvocationID.xy;
     uint width = frame.size.x;
     if (pix.x >= width || pix.y >= frame.size.y) return;
     uint pixel = pix.y * width + pix.x;
@@ -145,31 +207,26 @@ void main() {
     uint nonfinite = 0u;
     uint cut = 0u;
     uint passes = 0u;  // loop passes of this invocation, all loops together (lavapipe's limit is per invocation)
-    vec3 pixel00 = vec3(frame.pixel00.x, frame.pixel00.y, frame.pixel00.z);
-    vec3 du = vec3(frame.pixelDu.x, frame.pixelDu.y, frame.pixelDu.z);
-    vec3 dv = vec3(frame.pixelDv.x, frame.pixelDv.y, frame.pixelDv.z);
-    vec3 origin = vec3(frame.origin.x, frame.origin.y, frame.origin.z);
-    for (uint k = 0u; k < push.batch.y; ++k) {
+    uint k = 0u;       // samples of this dispatch finished
+    PathState s = startPath(pix, pixel, push.batch.x);
+    while (k < push.batch.y) {
         passes++;
-        uint rng = rngInit(pixel, push.batch.x + k, frame.size.w);
-        vec2 jitter = rngNext2(rng) - vec2(0.5f);  // box filter over the pixel's square
-        vec3 target = pixel00 + (float(pix.x) + jitter.x) * du + (float(pix.y) + jitter.y) * dv;
-        vec3 o = origin;
-        vec2 lens = rngNext2(rng);  // drawn in every variant, so variants see the same random numbers
-        if (HAS_DEFOCUS) {
-            vec2 disk = sampleUniformDisk(lens);
-            o += disk.x * vec3(frame.defocusU.x, frame.defocusU.y, frame.defocusU.z) +
-                 disk.y * vec3(frame.defocusV.x, frame.defocusV.y, frame.defocusV.z);
+        bool ended = bounce(s, rays, passes);
+        if (passes >= VKP_MAX_PASSES) {  // lavapipe's silent loop limit is near: stop, and say so
+            cut++;
+            break;
         }
-        PathResult pr = tracePath(o, normalize(target - o), rng, passes);
-        rays += pr.rays;
-        if (pr.cut) cut++;
-        vec3 L = pr.radiance;
-        if (any(isnan(L)) || any(isinf(L))) {
-            nonfinite++;
-        } else {
-            sum += vec4(L, 1.0f);
-            sq += vec4(L * L, 0.0f);
+        if (ended) {
+            // Samples are added in sample order, so any split over dispatches gives the same sums.
+            vec3 L = s.radiance;
+            if (any(isnan(L)) || any(isinf(L))) {
+                nonfinite++;
+            } else {
+                sum += vec4(L, 1.0f);
+                sq += vec4(L * L, 0.0f);
+            }
+            k++;
+            s = startPath(pix, pixel, push.batch.x + min(k, push.batch.y - 1u));
         }
     }
     accumSum[pixel] = sum;
@@ -179,4 +236,5 @@ void main() {
     if (old + rays < old) atomicAdd(counters[COUNTER_RAYS_HI], 1u);
     if (nonfinite > 0u) atomicAdd(counters[COUNTER_NONFINITE], nonfinite);
     if (cut > 0u) atomicAdd(counters[COUNTER_LOOP_GUARD], cut);
+    atomicMax(counters[COUNTER_MAX_PASSES], passes);
 }

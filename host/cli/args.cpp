@@ -31,8 +31,8 @@ const char* usageText() {
     return R"(vkpath: a headless path tracer on Vulkan compute
 
 usage:
-  vkpath render SCENE.json [options]   render a scene (default output: SCENE's name .png)
-  vkpath info SCENE.json               primitives, lights, BVH statistics, shader variant
+  vkpath render SCENE [options]        render a scene: .json, .gltf or .glb (default output: SCENE's name .png)
+  vkpath info SCENE                    primitives, lights, BVH statistics, shader variant
   vkpath devices [--validate]          list Vulkan devices and why any is unusable
   vkpath --help | --version
 
@@ -42,15 +42,21 @@ render options:
   --time SECONDS          stop after this much wall time (whichever of --spp/--time comes first)
   --width N, --height N   image size (override the scene)
   --max-depth N           path length cap      --seed N   random seed
-  --sampler S             bsdf | light | mixture (default: mixture, the book's)
+  --sampler S             bsdf | light | mixture (the book's) | mis (default)
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
+  --gltf-scene N          .gltf/.glb: render scene N of the file (default: the file's default scene)
+  --camera N              .gltf/.glb: view through camera N of the file (default: its first perspective camera)
   --exposure EV           exposure in stops for PNG output (default 0)
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
   --dump-format F         also dump exr or pfm (repeatable)
-  --samples-per-dispatch N  samples one dispatch adds per pixel (default 1)
+  --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
+  --reference REF         .exr/.pfm/.hdr of the same size: print the final error against it
+  --error-log LOG.csv     with --reference: a row spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
+                          at every dump (or, without --dump-every, at 1,2,4,8,... spp) and at the end
+  --stats-json FILE       the run's numbers (spp, rays, timings, rates, device) as JSON
   --quiet                 no progress output
 
 exit codes: 0 success, 1 bad input or usage, 2 no usable Vulkan device, 3 Vulkan failure
@@ -76,11 +82,18 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (i >= args.size()) usage(flag + " needs a value");
         return args[i++];
     };
+    auto fileValue = [&](const std::string& flag) -> std::string {
+        std::string v = value(flag);
+        if (v.empty()) usage(flag + " needs a file name");
+        return v;
+    };
     bool renderOnly = false;
     while (i < args.size()) {
         const std::string f = args[i++];
         if (f == "--validate") { a.validate = true; continue; }
         if (f == "--device") { a.device = value(f); continue; }
+        if (f == "--gltf-scene") { a.gltfScene = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
+        if (f == "--camera") { a.camera = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;
@@ -93,7 +106,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--seed") a.seed = parseUint(f, value(f), 0, 0xffffffffu);
             else if (f == "--sampler") {
                 const std::string s = value(f);
-                if (!parseSampler(s, a.sampler)) usage("--sampler must be bsdf, light or mixture, got '" + s + "'");
+                if (!parseSampler(s, a.sampler)) usage("--sampler must be bsdf, light, mixture or mis, got '" + s + "'");
             } else if (f == "--variant") {
                 const std::string v = value(f);
                 if (v == "full") a.fullVariant = true;
@@ -108,6 +121,9 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 else if (v == "hdr") a.dumpFormats.push_back(ImageFormat::Hdr);
                 else if (v != "png") usage("--dump-format must be exr, pfm, hdr or png, got '" + v + "'");
             } else if (f == "--samples-per-dispatch") a.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            else if (f == "--reference") a.reference = fileValue(f);
+            else if (f == "--error-log") a.errorLog = fileValue(f);
+            else if (f == "--stats-json") a.statsJson = fileValue(f);
             else if (f == "--quiet" || f == "-q") a.quiet = true;
             else usage("unknown option '" + f + "'");
             continue;
@@ -118,6 +134,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
     if ((a.command == Command::Render || a.command == Command::Info) && a.scene.empty())
         usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
     if (renderOnly && a.command != Command::Render) usage("render options are only valid with 'vkpath render'");
+    if (!a.errorLog.empty() && a.reference.empty()) usage("--error-log needs --reference");
     return a;
 }
 

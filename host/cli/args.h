@@ -19,7 +19,7 @@ struct CliArgs {
     std::vector<std::filesystem::path> outputs;  // -o, repeatable
     std::optional<std::uint32_t> spp, width, height, maxDepth, seed;
     double timeLimit = 0.0;                      // --time SECONDS (0: none)
-    Sampler sampler = Sampler::Mixture;
+    Sampler sampler = Sampler::Mis;
     bool fullVariant = false;                    // --variant full
     std::string device;                          // --device N | NAME-SUBSTRING
     bool validate = false;
@@ -28,7 +28,12 @@ struct CliArgs {
     std::filesystem::path dumpDir = "frames";
     std::vector<ImageFormat> dumpFormats{ImageFormat::Png};
     bool quiet = false;
-    std::uint32_t samplesPerDispatch = 1;
+    std::uint32_t samplesPerDispatch = 0;        // 0: automatic
+    std::filesystem::path reference;             ///< --reference: image to measure the error against
+    std::filesystem::path errorLog;              ///< --error-log: CSV of the error (needs --reference)
+    std::filesystem::path statsJson;             ///< --stats-json: the run's numbers
+    std::optional<std::uint32_t> gltfScene;      ///< --gltf-scene N: scene of a .gltf/.glb (default: the file's)
+    std::optional<std::uint32_t> camera;         ///< --camera N: camera of a .gltf/.glb (default: its first perspective one)
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

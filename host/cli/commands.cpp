@@ -1,13 +1,21 @@
 #include "cli/commands.h"
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <optional>
 
 #include "bvh/flatten.h"
+#include "core/atomic_file.h"
 #include "core/errors.h"
+#include "render/error_metrics.h"
 #include "render/features.h"
 #include "render/renderer.h"
+#include "render/run_stats.h"
 #include "render/session.h"
+#include "scene/gltf.h"
 #include "scene/scene.h"
 #include "vk/device.h"
 
@@ -16,8 +24,25 @@ namespace vkp {
 namespace {
 using Clock = std::chrono::steady_clock;
 
+/// The scene by its extension (.gltf / .glb: glTF, anything else: JSON) with the command line's
+/// overrides; prints its warnings on stderr.
 Scene loadWithOverrides(const CliArgs& a) {
-    Scene s = loadSceneJson(a.scene);
+    std::string ext = a.scene.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool gltf = ext == ".gltf" || ext == ".glb";
+    if (!gltf && (a.gltfScene || a.camera)) throw InputError("usage: --gltf-scene and --camera are for .gltf and .glb scenes");
+    Scene s;
+    if (gltf) {
+        GltfOptions o;
+        o.scene = a.gltfScene;
+        o.camera = a.camera;
+        o.width = a.width;  // one of them alone keeps the camera's aspect ratio
+        o.height = a.height;
+        s = loadSceneGltf(a.scene, o);
+    } else {
+        s = loadSceneJson(a.scene);
+    }
+    for (const std::string& w : s.warnings) std::fprintf(stderr, "vkpath: warning: %s\n", w.c_str());
     if (a.spp) s.render.spp = *a.spp;
     if (a.width) s.camera.width = *a.width;
     if (a.height) s.camera.height = *a.height;
@@ -34,19 +59,34 @@ std::size_t countShapes(const Scene& s, ShapeType t) {
 }  // namespace
 
 int runRender(const CliArgs& a, Clock::time_point processStart) {
+    RunStats st;
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    auto t = Clock::now();
     Scene scene = loadWithOverrides(a);
+    st.secondsSceneLoad = since(t);
     std::vector<std::filesystem::path> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(a.scene.stem().string() + ".png");
-    for (const auto& o : outputs) checkOutputPath(o);  // fail before the render, leave no file
+    // Fail before the render and leave no file: outputs, the reference, the logs.
+    for (const auto& o : outputs) checkOutputPath(o);
+    std::optional<Image> reference;
+    if (!a.reference.empty()) reference = readReferenceImage(a.reference, scene.camera.width, scene.camera.height);
+    if (!a.errorLog.empty()) checkCanCreateFile(a.errorLog);
+    if (!a.statsJson.empty()) checkCanCreateFile(a.statsJson);
 
+    t = Clock::now();
     FlatBvh bvh = buildFlatBvh(scene);
+    st.secondsBvh = since(t);
+    t = Clock::now();
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);
+    st.secondsSetup = since(t);
     RendererOptions ro;
     ro.sampler = a.sampler;
     ro.fullVariant = a.fullVariant;
     ro.samplesPerDispatch = a.samplesPerDispatch;
+    t = Clock::now();
     Renderer renderer(device, scene, bvh, ro);
+    st.secondsUpload = since(t);
     if (!a.quiet)
         std::fprintf(stderr, "vkpath: %s, %ux%u, %u spp, device %s, variant %s\n", a.scene.string().c_str(),
                      scene.camera.width, scene.camera.height, scene.render.spp, device.info().name.c_str(),
@@ -61,6 +101,16 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     so.dumpDir = a.dumpDir;
     so.dumpFormats = a.dumpFormats;
     so.quiet = a.quiet;
+    std::unique_ptr<ErrorLog> log;
+    ErrorMetrics lastError;
+    if (reference) {
+        if (!a.errorLog.empty()) log = std::make_unique<ErrorLog>(a.errorLog);
+        so.checkpointPowersOfTwo = true;
+        so.onCheckpoint = [&](const Checkpoint& c) {
+            lastError = computeErrorMetrics(c.image, *reference);
+            if (log) log->append(c.spp, c.seconds, lastError);
+        };
+    }
     const SessionResult r = runSession(renderer, so, processStart);
 
     const double samples = double(r.spp) * double(r.pixels);
@@ -73,7 +123,52 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     if (r.counters.loopGuard)
         std::fprintf(stderr, "vkpath: warning: %llu paths were cut short by the loop guard\n",
                      static_cast<unsigned long long>(r.counters.loopGuard));
+    if (reference)
+        std::fprintf(stderr, "vkpath: error against %s: rmse %.6g, relMSE %.6g\n", a.reference.string().c_str(),
+                     lastError.rmse, lastError.relmse);
     for (const auto& o : outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
+    if (log) std::fprintf(stderr, "vkpath: wrote %s (%zu rows)\n", a.errorLog.string().c_str(), log->rows());
+
+    if (!a.statsJson.empty()) {
+        st.version = VKPATH_VERSION;
+        st.scene = a.scene.string();
+        st.sampler = samplerName(a.sampler);
+        st.variant = renderer.features().name();
+        st.fullVariant = a.fullVariant;
+        st.width = scene.camera.width;
+        st.height = scene.camera.height;
+        st.maxDepth = scene.render.maxDepth;
+        st.seed = scene.render.seed;
+        st.samplesPerDispatch = a.samplesPerDispatch;
+        st.spp = r.spp;
+        st.sppRequested = scene.render.spp;
+        st.timeLimit = a.timeLimit;
+        st.rays = r.counters.rays;
+        st.firstBatchRays = r.firstBatchRays;
+        st.nonfinite = r.counters.nonfinite;
+        st.loopGuard = r.counters.loopGuard;
+        st.secondsFirstBatch = r.firstBatchSeconds;
+        st.secondsRender = r.renderSeconds;
+        st.secondsToFirstSample = r.firstSampleAt;
+        st.secondsCheckpoints = r.checkpointSeconds;
+        st.secondsOutput = r.outputSeconds;
+        st.checkpoints = r.checkpoints;
+        const DeviceInfo& d = device.info();
+        st.deviceName = d.name;
+        st.deviceType = kindName(d.kind);
+        st.driverName = d.driverName;
+        st.driverInfo = d.driverInfo;
+        st.vulkanVersion = apiVersionString(d.apiVersion);
+        if (const char* v = std::getenv("LP_NUM_THREADS")) st.lpNumThreads = v;
+        if (const char* v = std::getenv("MESA_SHADER_CACHE_DIR")) st.mesaShaderCacheDir = v;
+        if (reference) {
+            st.error = lastError;
+            st.reference = a.reference.string();
+        }
+        st.secondsTotal = since(processStart);  // the stats file itself is not counted
+        writeRunStatsJson(st, a.statsJson);
+        std::fprintf(stderr, "vkpath: wrote %s\n", a.statsJson.string().c_str());
+    }
     return kExitOk;
 }
 

@@ -6,7 +6,8 @@ const char* samplerName(Sampler s) {
     switch (s) {
         case Sampler::Bsdf: return "bsdf";
         case Sampler::Light: return "light";
-        default: return "mixture";
+        case Sampler::Mixture: return "mixture";
+        default: return "mis";
     }
 }
 
@@ -14,6 +15,7 @@ bool parseSampler(const std::string& name, Sampler& out) {
     if (name == "bsdf") out = Sampler::Bsdf;
     else if (name == "light") out = Sampler::Light;
     else if (name == "mixture") out = Sampler::Mixture;
+    else if (name == "mis") out = Sampler::Mis;
     else return false;
     return true;
 }
@@ -26,7 +28,9 @@ std::vector<std::uint32_t> Features::specConstants() const {
 std::string Features::name() const {
     std::string prims, mats, lights;
     auto add = [](std::string& s, bool on, const char* what) {
-        if (on) s += (s.empty() ? "" : "+") + std::string(what);
+        if (!on) return;
+        if (!s.empty()) s += '+';
+        s += what;
     };
     add(prims, spheres, "sphere");
     add(prims, parallelograms, "quad/triangle");
@@ -36,9 +40,16 @@ std::string Features::name() const {
     add(mats, emitters, "emission");
     add(lights, sphereLights, "sphere");
     add(lights, parallelogramLights, "quad/triangle");
-    return "prims:" + (prims.empty() ? std::string("none") : prims) + " materials:" + (mats.empty() ? std::string("none") : mats) +
-           " lights:" + (lights.empty() ? std::string("none") : lights) + " sampler:" + samplerName(sampler) +
-           (defocus ? " defocus" : "");
+    std::string out = "prims:";
+    out += prims.empty() ? "none" : prims;
+    out += " materials:";
+    out += mats.empty() ? "none" : mats;
+    out += " lights:";
+    out += lights.empty() ? "none" : lights;
+    out += " sampler:";
+    out += samplerName(sampler);
+    if (defocus) out += " defocus";
+    return out;
 }
 
 Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
@@ -57,7 +68,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     }
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
-        const Material& m = scene.materials[i];
+        const Material m = kernelMaterial(scene.materials[i]);  // what the kernel renders it as
         f.lambertian |= m.type == MaterialType::Lambertian;
         f.metal |= m.type == MaterialType::Metal;
         f.dielectric |= m.type == MaterialType::Dielectric;

@@ -9,9 +9,11 @@
 
 namespace vkp {
 
-enum class Sampler : std::uint32_t { Bsdf = 0, Light = 1, Mixture = 2 };
+enum class Sampler : std::uint32_t { Bsdf = 0, Light = 1, Mixture = 2, Mis = 3 };
 const char* samplerName(Sampler s);
-/// "bsdf" | "light" | "mixture" -> Sampler; false if unknown.
+/// Every sampler, for tests and benchmarks that must cover them all.
+inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sampler::Mixture, Sampler::Mis};
+/// "bsdf" | "light" | "mixture" | "mis" -> Sampler; false if unknown.
 bool parseSampler(const std::string& name, Sampler& out);
 
 struct Features {
@@ -19,7 +21,7 @@ struct Features {
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
     bool sphereLights = false, parallelogramLights = false;  ///< kinds in the light list
     bool defocus = false;
-    Sampler sampler = Sampler::Mixture;
+    Sampler sampler = Sampler::Mis;
 
     /// Values for constant_id 0..9, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;

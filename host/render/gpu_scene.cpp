@@ -1,7 +1,11 @@
 #include "render/gpu_scene.h"
 
+#include "render/light_table.h"
+
 #include <bit>
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include <glm/gtc/constants.hpp>
 
@@ -34,20 +38,37 @@ void packCamera(const Camera& cam, gpu::GpuFrame& frame) {
     frame.defocusV = v4(v * defocusRadius);
 }
 
-gpu::GpuFrame packFrame(const Scene& scene, std::uint32_t primCount, std::uint32_t nodeCount) {
+std::uint32_t tileStride(std::uint32_t n) {
+    if (n <= 2) return 1;
+    // Near the golden section of n (consecutive workgroups land far apart), coprime with n so
+    // that g -> g * s mod n is a permutation, and small enough that g * s fits in 32 bits.
+    std::uint64_t s = std::min<std::uint64_t>(std::uint64_t(0.6180339887 * n), (0xffffffffull / n) - 1);
+    s = std::max<std::uint64_t>(s, 1);
+    while (std::gcd(s, std::uint64_t(n)) != 1) --s;
+    return std::uint32_t(s);
+}
+
+gpu::GpuFrame packFrame(const Scene& scene) {
     gpu::GpuFrame f{};
     packCamera(scene.camera, f);
     f.background = v4(scene.render.background);
     f.size = glm::uvec4(scene.camera.width, scene.camera.height, scene.render.maxDepth, scene.render.seed);
     constexpr std::uint32_t kRouletteStart = 3;  // bounces before Russian roulette may end a path
-    f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), kRouletteStart, primCount, nodeCount);
+    f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), kRouletteStart, emittingLightCount(scene), 0);
+    const std::uint32_t groupsX = (scene.camera.width + 7) / 8, groupsY = (scene.camera.height + 7) / 8;
+    f.tiles = glm::uvec4(groupsX, groupsX * groupsY, tileStride(groupsX * groupsY), 0);
     return f;
 }
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials) {
     std::vector<gpu::GpuMaterial> out;
     out.reserve(materials.size());
-    for (const Material& m : materials) {
+    for (const Material& original : materials) {
+        // glTF Pbr materials are rendered as an approximation in the book's materials until the
+        // kernel has the glTF BRDF: rough dielectrics -> lambertian (albedo = base colour), metals
+        // -> metal (fuzz = roughness^2), transmission -> exact-Fresnel glass, emitters ->
+        // diffuse_light (single-sided unless doubleSided). See kernelMaterial (scene.h).
+        const Material m = kernelMaterial(original);
         std::uint32_t flags = std::uint32_t(m.type);
         if (m.twoSided) flags |= gpu::MATF_TWO_SIDED;
         if (m.fresnelExact) flags |= gpu::MATF_FRESNEL_EXACT;
@@ -57,17 +78,6 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
         g.m0 = v4(m.albedo, bitsf(flags));
         g.m1 = v4(m.emit, param);
         out.push_back(g);
-    }
-    return out;
-}
-
-std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape) {
-    std::vector<gpu::GpuLight> out;
-    const float pick = scene.lights.empty() ? 0.0f : 1.0f / float(scene.lights.size());
-    for (std::uint32_t shape : scene.lights) {
-        gpu::GpuLight l{};
-        l.l0 = glm::vec4(bitsf(primOfShape.at(shape)), pick, shapeArea(scene.shapes[shape]), 0.0f);
-        out.push_back(l);
     }
     return out;
 }

@@ -12,12 +12,12 @@ namespace vkp {
 /// Fills origin, pixel00, pixelDu, pixelDv, defocusU, defocusV of `frame`.
 void packCamera(const Camera& cam, gpu::GpuFrame& frame);
 
+/// Stride s of the scrambled tile order (GpuFrame::tiles): coprime with n, n * s < 2^32.
+std::uint32_t tileStride(std::uint32_t n);
+
 /// Everything in GpuFrame for a render of scene at its (possibly overridden) settings.
-gpu::GpuFrame packFrame(const Scene& scene, std::uint32_t primCount, std::uint32_t nodeCount);
+gpu::GpuFrame packFrame(const Scene& scene);
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
-
-/// One GpuLight per entry of scene.lights; primOfShape maps a shape index to its packed primitive.
-std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape);
 
 }  // namespace vkp

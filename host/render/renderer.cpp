@@ -1,11 +1,13 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "bvh/flatten.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
 #include "render/gpu_scene.h"
+#include "render/light_table.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
@@ -67,7 +69,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       features_(sceneFeatures(scene, options.sampler, options.fullVariant)),
       width_(scene.camera.width),
       height_(scene.camera.height),
-      spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1) {
+      spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1),
+      autoSpd_(options.samplesPerDispatch == 0) {
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
@@ -75,7 +78,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
-    const gpu::GpuFrame frame = packFrame(scene, std::uint32_t(bvh.prims.size()), std::uint32_t(bvh.nodes.size()));
+    const gpu::GpuFrame frame = packFrame(scene);
     impl_->frame = std::make_unique<GpuBuffer>(device, sizeof(frame), vk::BufferUsageFlagBits::eUniformBuffer);
     impl_->frame->upload(&frame, sizeof(frame));
     impl_->nodes = uploadTexels(device, bvh.nodes);
@@ -124,6 +127,12 @@ void Renderer::addSamples(std::uint32_t count) {
     if (count == 0) return;
     try {
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
+            cmd.fillBuffer(impl_->counters->buffer(), gpu::COUNTER_MAX_PASSES * 4, 4, 0);
+            vk::MemoryBarrier mb{};
+            mb.srcAccessMask = vk::AccessFlagBits::eTransferWrite;
+            mb.dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite;
+            cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb,
+                                nullptr, nullptr);
             for (std::uint32_t s = 0; s < count; s += spd_) {
                 gpu::GpuPush push{};
                 push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
@@ -135,6 +144,18 @@ void Renderer::addSamples(std::uint32_t count) {
     }
     done_ += count;
     dev_->instance().throwIfValidationMessages("while rendering");
+    std::uint32_t raw[gpu::COUNTER_COUNT];
+    impl_->counters->download(raw, sizeof(raw));
+    maxPasses_ = raw[gpu::COUNTER_MAX_PASSES];
+    if (autoSpd_) {
+        // Passes grow about linearly with the samples per dispatch: aim the busiest invocation at
+        // half of the 60,000-pass guard, at most doubling per step.
+        constexpr double kTargetPasses = 30000.0;
+        const std::uint32_t perDispatch = std::min(spd_, count);
+        const double perSample = double(std::max<std::uint32_t>(maxPasses_, 1)) / perDispatch;
+        const auto fit = std::uint32_t(std::clamp(kTargetPasses / perSample, 1.0, 8.0));
+        spd_ = std::clamp<std::uint32_t>(fit, 1, 2 * spd_);
+    }
 }
 
 PixelSums Renderer::readSums() {

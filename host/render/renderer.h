@@ -15,9 +15,11 @@ class VulkanDevice;
 struct FlatBvh;
 
 struct RendererOptions {
-    Sampler sampler = Sampler::Mixture;
+    Sampler sampler = Sampler::Mis;
     bool fullVariant = false;              ///< compile every feature in (`--variant full`)
-    std::uint32_t samplesPerDispatch = 1;  ///< samples one dispatch adds per pixel (lavapipe loop limit)
+    /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
+    /// invocation at half of lavapipe's loop budget, measured after every submission.
+    std::uint32_t samplesPerDispatch = 0;
 };
 
 /// Totals since the render began.
@@ -50,6 +52,10 @@ public:
     /// waits for it. Throws VulkanError on a device failure or a validation message.
     void addSamples(std::uint32_t count);
     std::uint32_t samplesDone() const { return done_; }
+    /// Samples per pixel that the next dispatch adds.
+    std::uint32_t samplesPerDispatch() const { return spd_; }
+    /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
+    std::uint32_t maxPassesLastBatch() const { return maxPasses_; }
 
     PixelSums readSums();
     Image image() { return readSums().mean(); }
@@ -62,7 +68,9 @@ private:
     VulkanDevice* dev_;
     Features features_;
     std::uint32_t width_, height_, spd_;
+    bool autoSpd_;
     std::uint32_t done_ = 0;
+    std::uint32_t maxPasses_ = 0;
 };
 
 }  // namespace vkp

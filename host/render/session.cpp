@@ -71,11 +71,43 @@ std::string dumpFileName(std::uint32_t spp, ImageFormat format) {
     return buf;
 }
 
+namespace {
+/// The smallest power of two strictly greater than n (n < 2^31).
+std::uint32_t nextPowerOfTwoAbove(std::uint32_t n) {
+    std::uint32_t p = 1;
+    while (p <= n) p <<= 1;
+    return p;
+}
+
+void writeDumps(const Image& img, const SessionOptions& o, std::uint32_t spp) {
+    std::filesystem::create_directories(o.dumpDir);
+    for (ImageFormat f : o.dumpFormats) {
+        WriteOptions wo;
+        wo.exposure = o.exposure;
+        writeImage(img, o.dumpDir / dumpFileName(spp, f), wo);
+    }
+}
+}  // namespace
+
 SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::time_point processStart) {
     SessionResult res;
     Progress progress(o.quiet, o.spp);
     const std::uint64_t pixels = renderer.readSums().sum.size() / 4;
     res.pixels = pixels;
+    const bool powersOfTwo = o.onCheckpoint && o.checkpointPowersOfTwo && o.dumpEvery == 0;
+    std::uint32_t lastCheckpoint = 0;
+    // Reads the image back, hands it to onCheckpoint (and returns it for dumps or outputs).
+    auto checkpoint = [&](std::uint32_t spp) {
+        const auto t0 = Clock::now();
+        Image img = renderer.image();
+        if (o.onCheckpoint && spp != lastCheckpoint) {
+            o.onCheckpoint(Checkpoint{spp, secondsSince(processStart), img});
+            lastCheckpoint = spp;
+            ++res.checkpoints;
+        }
+        res.checkpointSeconds += secondsSince(t0);
+        return img;
+    };
     double perSample = 0.0;  // seconds per spp, measured
     int batches = 0;
     constexpr double kBatchSeconds = 0.5;  // aim for a submit this long: progress stays live
@@ -85,6 +117,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         if (perSample > 0.0) n = std::uint32_t(std::clamp(kBatchSeconds / perSample, 1.0, 256.0));
         n = std::min(n, o.spp - done);
         if (o.dumpEvery) n = std::min(n, o.dumpEvery - done % o.dumpEvery);
+        if (powersOfTwo && done < (1u << 30)) n = std::min(n, nextPowerOfTwoAbove(done) - done);
         if (o.timeLimit > 0.0 && done > 0) {
             const double left = o.timeLimit - secondsSince(processStart);
             if (left <= 0.0) break;
@@ -95,7 +128,10 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         const auto t0 = Clock::now();
         renderer.addSamples(n);
         const double dt = secondsSince(t0);
-        if (done == 0) res.firstBatchSeconds = dt;
+        if (done == 0) {
+            res.firstBatchSeconds = dt;
+            res.firstSampleAt = secondsSince(processStart);
+        }
         res.renderSeconds += dt;
         // The first batch includes the shader JIT: trust it only until the second batch is measured.
         const double measured = dt / n;
@@ -103,30 +139,29 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         ++batches;
         const std::uint32_t now = renderer.samplesDone();
         const RenderCounters c = renderer.counters();
+        if (done == 0) res.firstBatchRays = c.rays;
         const double eta = double(o.spp - now) * perSample;
         progress.update(now, res.renderSeconds, double(now) * pixels, double(c.rays), eta, now == o.spp);
-        if (o.dumpEvery && now % o.dumpEvery == 0 && now < o.spp) {
-            std::filesystem::create_directories(o.dumpDir);
-            const Image img = renderer.image();
-            for (ImageFormat f : o.dumpFormats) {
-                WriteOptions wo;
-                wo.exposure = o.exposure;
-                writeImage(img, o.dumpDir / dumpFileName(now, f), wo);
+        if (now < o.spp) {
+            const bool dump = o.dumpEvery && now % o.dumpEvery == 0;
+            const bool power = powersOfTwo && (now & (now - 1)) == 0;
+            if (dump || power) {
+                const Image img = checkpoint(now);
+                if (dump) {
+                    const auto t1 = Clock::now();
+                    writeDumps(img, o, now);
+                    res.outputSeconds += secondsSince(t1);
+                }
             }
         }
         if (o.timeLimit > 0.0 && secondsSince(processStart) >= o.timeLimit) break;
     }
     progress.finish();
-    const Image img = renderer.image();
-    if (o.dumpEvery) {
-        std::filesystem::create_directories(o.dumpDir);
-        for (ImageFormat f : o.dumpFormats) {
-            WriteOptions wo;
-            wo.exposure = o.exposure;
-            writeImage(img, o.dumpDir / dumpFileName(renderer.samplesDone(), f), wo);
-        }
-    }
+    const Image img = checkpoint(renderer.samplesDone());
+    const auto t1 = Clock::now();
+    if (o.dumpEvery) writeDumps(img, o, renderer.samplesDone());
     writeAll(img, o.outputs, o.exposure);
+    res.outputSeconds += secondsSince(t1);
     res.spp = renderer.samplesDone();
     res.counters = renderer.counters();
     res.seconds = secondsSince(processStart);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,13 @@
 #include "render/renderer.h"
 
 namespace vkp {
+
+/// A moment of the render at which the session hands the current image out (see SessionOptions).
+struct Checkpoint {
+    std::uint32_t spp = 0;  ///< samples per pixel in `image`
+    double seconds = 0.0;   ///< wall time since process start when `image` was read back (s)
+    const Image& image;     ///< the mean image so far (linear radiance)
+};
 
 struct SessionOptions {
     std::uint32_t spp = 64;                        ///< stop after this many samples per pixel
@@ -21,6 +29,12 @@ struct SessionOptions {
     std::filesystem::path dumpDir = "frames";
     std::vector<ImageFormat> dumpFormats{ImageFormat::Png};  ///< formats of each dump
     bool quiet = false;
+    /// Called with the image at every dump (when dumpEvery > 0), at every power of two spp (1, 2,
+    /// 4, ...; when checkpointPowersOfTwo and dumpEvery == 0) and once at the end (never twice at the
+    /// same spp). Batches are cut so that they end exactly at these spp. Time spent here counts in
+    /// the wall time (and towards timeLimit) but not in renderSeconds.
+    std::function<void(const Checkpoint&)> onCheckpoint;
+    bool checkpointPowersOfTwo = false;
 };
 
 struct SessionResult {
@@ -28,6 +42,11 @@ struct SessionResult {
     double seconds = 0.0;        ///< wall time since process start
     double renderSeconds = 0.0;  ///< time spent in batches of samples
     double firstBatchSeconds = 0.0;  ///< the first batch (1 spp), shader JIT included
+    double firstSampleAt = 0.0;      ///< wall time since process start when the first batch ended (s)
+    std::uint64_t firstBatchRays = 0;  ///< rays traced by the first batch
+    double checkpointSeconds = 0.0;  ///< time spent in checkpoints: image read-back + onCheckpoint (s)
+    std::uint32_t checkpoints = 0;   ///< number of onCheckpoint calls
+    double outputSeconds = 0.0;      ///< time spent writing dumps and the final images (s)
     RenderCounters counters;
     std::uint64_t pixels = 0;
 };

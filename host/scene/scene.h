@@ -1,5 +1,5 @@
 // The scene as the host sees it after loading: world-space shapes, materials, lights, camera.
-// Loaders (JSON, later glTF) produce it; the BVH builder and the renderer consume it.
+// Loaders (JSON: scene_json.cpp, glTF: gltf.h) produce it; the BVH builder and the renderer consume it.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -11,7 +11,48 @@
 
 namespace vkp {
 
-enum class MaterialType : std::uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, DiffuseLight = 3 };
+/// Pbr: the glTF 2.0 metallic-roughness material (with the extensions in PbrParams); only glTF
+/// files produce it. Until the kernel has the glTF BRDF it renders kernelMaterial(m) instead.
+enum class MaterialType : std::uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, DiffuseLight = 3, Pbr = 4 };
+
+/// A texture lookup of a material: which texture of Scene::textures, which UV set, and the
+/// KHR_texture_transform of the lookup (identity when absent).
+struct TextureRef {
+    std::int32_t texture = -1;    ///< index into Scene::textures; -1: no texture (use the factor alone)
+    std::uint32_t texCoord = 0;   ///< the file's UV set; only TEXCOORD_0 is stored (the loader warns about others)
+    glm::vec2 offset{0.0f};       ///< KHR_texture_transform offset (UV units)
+    float rotation = 0.0f;        ///< KHR_texture_transform rotation, radians, counter-clockwise in UV space
+    glm::vec2 scale{1.0f};        ///< KHR_texture_transform scale
+    bool valid() const { return texture >= 0; }
+    /// The UV at which to sample: T(offset) * R(rotation) * S(scale) * uv (KHR_texture_transform).
+    glm::vec2 transform(glm::vec2 uv) const;
+};
+
+/// How a glTF material's alpha (baseColor alpha times the texture's) is used (glTF 2.0 sec. 3.9.4).
+enum class AlphaMode : std::uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
+/// Parameters of a MaterialType::Pbr material (glTF 2.0 sec. 3.9 and the KHR_materials_*
+/// extensions), as in the file; factors multiply their texture's value. Colours are linear RGB.
+/// The emission is Material::emit (emissiveFactor x KHR_materials_emissive_strength), the index of
+/// refraction Material::ior (KHR_materials_ior, default 1.5), doubleSided is Material::twoSided.
+struct PbrParams {
+    glm::vec4 baseColor{1.0f};             ///< baseColorFactor, RGBA (also in Material::albedo as RGB)
+    TextureRef baseColorTexture;           ///< sRGB colour, alpha linear
+    float metallic = 1.0f;                 ///< metallicFactor in [0,1]
+    float roughness = 1.0f;                ///< roughnessFactor in [0,1] (perceptual: alpha = roughness^2)
+    TextureRef metallicRoughnessTexture;   ///< linear; roughness in G, metallic in B
+    TextureRef normalTexture;              ///< linear tangent-space normal map
+    float normalScale = 1.0f;              ///< normalTexture.scale
+    TextureRef emissiveTexture;            ///< sRGB colour, multiplies Material::emit
+    float specular = 1.0f;                 ///< KHR_materials_specular specularFactor (0: pure Lambertian base)
+    glm::vec3 specularColor{1.0f};         ///< KHR_materials_specular specularColorFactor
+    TextureRef specularTexture;            ///< linear, factor in A
+    TextureRef specularColorTexture;       ///< sRGB colour
+    float transmission = 0.0f;             ///< KHR_materials_transmission transmissionFactor in [0,1]
+    TextureRef transmissionTexture;        ///< linear, factor in R
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;              ///< Mask: alpha < cutoff is a hole
+};
 
 struct Material {
     std::string name;
@@ -22,7 +63,9 @@ struct Material {
     float ior = 1.5f;        ///< dielectric: index of refraction (relative to the outside)
     bool fresnelExact = false;  ///< dielectric: exact Fresnel equations instead of Schlick
     bool twoSided = false;      ///< both faces emit: diffuse_light's "two_sided"; the loader sets it
-                                ///< for every emitting lambertian (which always emits from both faces)
+                                ///< for every emitting lambertian (which always emits from both faces);
+                                ///< Pbr: glTF doubleSided (a single-sided emitter emits from its front only)
+    PbrParams pbr;              ///< Pbr only
     bool emits() const { return emit.x > 0.0f || emit.y > 0.0f || emit.z > 0.0f; }
 };
 
@@ -38,6 +81,48 @@ struct Shape {
     float radius = 0.0f;
     std::uint32_t material = 0;  ///< index into Scene::materials
     bool sampled = false;        ///< in the light list: emits, or "sample": true
+    /// Triangles from glTF meshes: index into Scene::triangleVertices (their shading attributes);
+    /// kNoAttributes for every other shape.
+    std::uint32_t attributes = kNoAttributes;
+    static constexpr std::uint32_t kNoAttributes = 0xffffffffu;
+};
+
+/// The shading attributes of one mesh triangle: its three corners as indices into
+/// Scene::vertices, in the order of Shape p0, p1, p2, and which attributes its primitive had.
+/// 16 bytes (one uvec4 texel on the GPU).
+struct TriangleVertices {
+    std::uint32_t v[3] = {0, 0, 0};
+    std::uint32_t flags = 0;  ///< kHasNormal | kHasUv | kHasTangent
+    static constexpr std::uint32_t kHasNormal = 1;   ///< else shade with the geometric (flat) normal
+    static constexpr std::uint32_t kHasUv = 2;       ///< else UV = (0,0)
+    static constexpr std::uint32_t kHasTangent = 4;  ///< from the file, or generated for a normal map
+};
+
+/// Per-vertex shading attributes of mesh triangles, in world space, structure of arrays. normal
+/// has one entry per vertex; uv and tangent are either empty (no triangle has them) or as long as
+/// normal (zeros where a triangle's primitive lacked them: see TriangleVertices::flags).
+struct MeshVertices {
+    std::vector<glm::vec3> normal;   ///< unit length (zero where the primitive had no NORMAL)
+    std::vector<glm::vec2> uv;       ///< TEXCOORD_0 (glTF convention: v down, (0,0) = top left of the image)
+    std::vector<glm::vec4> tangent;  ///< xyz unit tangent, w = +-1: bitangent = w * cross(normal, tangent.xyz)
+    std::size_t size() const { return normal.size(); }
+};
+
+enum class TextureWrap : std::uint32_t { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
+
+/// A decoded image: RGBA, 8 bits per channel, rows top to bottom (as stored in the file).
+struct TextureImage {
+    std::string name;  ///< for messages: the file's image name or URI
+    std::uint32_t width = 0, height = 0;
+    std::vector<std::uint8_t> rgba8;  ///< width * height * 4 bytes
+};
+
+/// An image with its sampler, as one material slot uses it.
+struct Texture {
+    std::uint32_t image = 0;  ///< index into Scene::images
+    TextureWrap wrapS = TextureWrap::Repeat, wrapT = TextureWrap::Repeat;
+    bool nearest = false;     ///< magFilter NEAREST (default: bilinear)
+    bool srgb = false;        ///< colour data (base colour, emissive, specular colour): decode sRGB to linear
 };
 
 /// The book's camera ("Ray Tracing in One Weekend", sec. 13).
@@ -66,6 +151,13 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<std::uint32_t> lights;  ///< indices into shapes of every sampled shape, in file order
+    std::vector<TriangleVertices> triangleVertices;  ///< glTF triangles' corners (Shape::attributes)
+    MeshVertices vertices;                           ///< their per-vertex attributes
+    std::vector<TextureImage> images;
+    std::vector<Texture> textures;                   ///< TextureRef::texture indexes this
+    /// Problems that did not stop loading (e.g. an unsupported glTF extension that is only used),
+    /// one line each, "<file>: <place>: <message>"; the command line prints them as warnings.
+    std::vector<std::string> warnings;
 };
 
 /// Load a scene in vkpath's JSON format (scenes/README.md). Throws InputError with one line
@@ -74,6 +166,11 @@ Scene loadSceneJson(const std::filesystem::path& file);
 
 /// The same from text already in memory; file is only used in messages and Scene::path.
 Scene parseSceneJson(std::string_view text, const std::filesystem::path& file);
+
+/// What the current kernel renders for m: m itself, except for Pbr, which becomes an approximation
+/// in the book's materials (see its definition in host/scene/gltf_kernel_material.cpp). Used by the
+/// GPU packing and should be used by anything that chooses kernel features from material types.
+Material kernelMaterial(const Material& m);
 
 /// Surface area in world units^2: 4 pi r^2 (sphere), |u x v| (quad), |e1 x e2| / 2 (triangle).
 float shapeArea(const Shape& s);

@@ -1,9 +1,12 @@
-// The "objects" section of the JSON scene format (scenes/README.md): spheres, quads, boxes and
-// triangles, moved to world space by their "transform", and the light list.
+// The "objects" section of the JSON scene format (scenes/README.md): spheres, quads, boxes,
+// triangles and included glTF files, moved to world space by their "transform", and the light list.
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 #include <vector>
 
 #include "core/errors.h"
+#include "scene/gltf.h"
 #include "scene/json_reader.h"
 #include "scene/scene_json_parts.h"
 #include "scene/transform.h"
@@ -64,7 +67,7 @@ Shape transformed(const Shape& s, const ObjectTransform& xf) {
 std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
                               const Scene& scene) {
     json::Object o = v.object();
-    const std::string type = o.choice("type", {"sphere", "quad", "box", "triangle"});
+    const std::string type = o.choice("type", {"sphere", "quad", "box", "triangle", "gltf"});
 
     const json::Value matValue = o.required("material");
     const std::string matName = matValue.string();
@@ -145,10 +148,53 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
     return out;
 }
 
+/// {"type": "gltf", "file": "...", "transform": [...], "material": "name"}: the triangles of a
+/// glTF file's default scene, file relative to the JSON file, placed by transform (after the
+/// file's own node transforms); "material" replaces every material of the file.
+void readGltfObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene) {
+    json::Object o = v.object();
+    o.choice("type", {"gltf"});
+    const json::Value fileValue = o.required("file");
+    const std::string name = fileValue.string();
+    if (name.empty()) fileValue.fail("must not be empty");
+    std::filesystem::path file(name);
+    if (file.is_relative()) file = scene.path.parent_path() / file;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) {
+        fileValue.fail("cannot read " + file.string() + ": " +
+                       (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+    }
+    GltfInclude include;
+    if (auto t = o.optional("transform")) {
+        const Affine a = readTransform(*t).map;
+        include.transform = glm::dmat4(a.linear);
+        include.transform[3] = glm::dvec4(a.offset, 1.0);
+    }
+    if (auto m = o.optional("material")) {
+        const std::string matName = m->string();
+        const auto found = index.find(matName);
+        if (found == index.end()) m->fail("unknown material \"" + matName + "\" (not a key of /materials)");
+        include.material = found->second;
+    }
+    o.finish();
+    appendGltf(scene, file, include);
+}
+
+bool isGltfObject(const json::Value& v) {
+    const json::Json& j = v.json();
+    if (!j.is_object()) return false;
+    const auto t = j.find("type");
+    return t != j.end() && t->is_string() && t->get<std::string>() == "gltf";
+}
+
 }  // namespace
 
 void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene) {
     for (const json::Value& item : v.array()) {
+        if (isGltfObject(item)) {
+            readGltfObject(item, index, scene);
+            continue;
+        }
         for (const Shape& s : readObject(item, index, scene)) {
             if (s.sampled) scene.lights.push_back(static_cast<std::uint32_t>(scene.shapes.size()));
             scene.shapes.push_back(s);

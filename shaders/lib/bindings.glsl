@@ -24,6 +24,7 @@ layout(constant_id = 9) const bool HAS_DEFOCUS = true;
 const uint SAMPLER_BSDF = 0u;     // cosine sampling only; emission counted where rays hit it
 const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
 const uint SAMPLER_MIXTURE = 2u;  // the book: 0.5 cosine + 0.5 lights (uniform pick), one direction
+const uint SAMPLER_MIS = 3u;      // light sample + BSDF sample, power heuristic (Veach 1997)
 
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { GpuFrame frame; };

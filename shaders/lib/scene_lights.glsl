@@ -1,13 +1,20 @@
 // The list of sampled objects ("lights": emitters and objects marked "sample": true).
-// One is picked uniformly, as in "Ray Tracing: The Rest of Your Life" (hittable_list::random);
-// pdfs are in solid angle at the shading point x, and include the pick probability.
+// The book's mixture picks one uniformly (hittable_list::random); next-event estimation picks an
+// emitter in proportion to its power (shared/light_pick.h). Pdfs are in solid angle at the
+// shading point x.
 #ifndef VKP_SCENE_LIGHTS_GLSL
 #define VKP_SCENE_LIGHTS_GLSL
 #include "lib/bindings.glsl"
 #include "shared/intersect.h"
+#include "shared/light_pick.h"
 #include "shared/light_sampling.h"
+#include "shared/rect_sampling.h"
 
 uint lightCount() { return frame.counts.x; }
+
+// Quads: the book's uniform area sampling for `mixture` (exactly as the book defines it), solid-angle
+// sampling of rectangles (Urena et al. 2013, area as its fallback) for next-event estimation.
+const bool SOLID_ANGLE_QUADS = SAMPLER != SAMPLER_MIXTURE;
 
 /// Direction towards a point sampled on primitive p as seen from x (pdf 0: no sample).
 LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
@@ -20,7 +27,8 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
     vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD) s = sampleQuadLight(p0, e1, e2, x, xi);
+    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
+        s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi) : sampleQuadLight(p0, e1, e2, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE) s = sampleTriangleLight(p0, e1, e2, x, xi);
     return s;
 }
@@ -33,17 +41,34 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
     float pdf = 0.0f;
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD) pdf = pdfQuadLight(p0, e1, e2, x, d);
+    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
+        pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d) : pdfQuadLight(p0, e1, e2, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE) pdf = pdfTriangleLight(p0, e1, e2, x, d);
     return pdf;
 }
 
-/// Pick one light uniformly with u in [0,1): its primitive index.
-uint pickLight(float u, out float pickPdf) {
+/// Number of sampled objects that emit: power-proportional picks exist when it is > 0.
+uint emitterCount() { return frame.counts.z; }
+
+/// Pick one sampled object uniformly with u in [0,1) (the book's mixture): its light index.
+uint pickLightUniform(float u, out float pickPdf) {
     uint n = lightCount();
     pickPdf = 1.0f / float(n);
-    return min(uint(u * float(n)), n - 1u);
+    return pickUniform(u, n);
 }
+
+/// Pick one emitter in proportion to its power with u in [0,1): its light index. Requires
+/// emitterCount() > 0; objects that do not emit have probability 0 and are never picked.
+uint pickLightPower(float u, out float pickPdf) {
+    float frac;
+    uint column = aliasColumn(u, lightCount(), frac);
+    uint li = aliasResolve(column, frac, fetchLight(column));
+    pickPdf = fetchLight(li).l0.y;
+    return li;
+}
+
+/// Probability that pickLightPower picks light li.
+float pickPdfPower(uint li) { return fetchLight(li).l0.y; }
 
 /// The book's light pdf: the average of every sampled object's pdf for direction d
 /// (hittable_list::pdf_value). Costs one loop over the light list.

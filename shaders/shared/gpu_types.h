@@ -57,8 +57,9 @@ struct GpuMaterial {
 const uint GPU_MATERIAL_TEXELS = 2u;
 
 // ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
-// x: primitive index (bits), y: selection probability (float), z: area in world units^2 (float),
-// w: reserved (0).
+// x: primitive index (bits), y: probability of picking it in proportion to emitted power (0 for
+// an object that does not emit), z: alias-table threshold of column i (shared/light_pick.h),
+// w: bits of the alias index of column i. The uniform pick of the book has probability 1/count.
 struct GpuLight {
     vec4 l0;
 };
@@ -77,7 +78,9 @@ struct GpuFrame {
     vec4 background;  // rgb: radiance of escaping rays
     uvec4 size;       // x: width, y: height, z: max_depth, w: seed
     uvec4 counts;     // x: number of sampled objects (lights), y: Russian-roulette start depth,
-                      // z: primitive count, w: node count
+                      // z: number of them that emit (power-proportional picks need > 0), w: 0
+    uvec4 tiles;      // x: workgroups per row, y: workgroups in all, z: tile stride (coprime
+                      // with y, y * z < 2^32): workgroup g renders tile (g * z) mod y, w: reserved
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel.
@@ -92,7 +95,8 @@ const uint COUNTER_NONFINITE = 0u;   // samples dropped because they were NaN or
 const uint COUNTER_RAYS_LO = 1u;     // rays traced (64-bit, low word)
 const uint COUNTER_RAYS_HI = 2u;     // rays traced (high word)
 const uint COUNTER_LOOP_GUARD = 3u;  // paths cut short by the loop-pass guard (must stay 0)
-const uint COUNTER_COUNT = 4u;
+const uint COUNTER_MAX_PASSES = 4u;  // most loop passes of one invocation in the last submission
+const uint COUNTER_COUNT = 5u;
 
 VKP_END
 #endif

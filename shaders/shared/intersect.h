@@ -34,6 +34,9 @@ VKP_FN float intersectSphere(vec3 c, float r, vec3 o, vec3 d, float tmin, float 
 /// Parallelogram Q + a e1 + b e2 (a,b in [0,1]) or, with triangle = true, triangle
 /// Q + a e1 + b e2 (a,b >= 0, a+b <= 1). Moller-Trumbore ("Fast, Minimum Storage Ray/Triangle
 /// Intersection", 1997) with e1, e2 as edges. ab receives (a, b) of the hit point.
+/// Not watertight between neighbours (a ray through a shared edge can slip between them); the
+/// traversal uses intersectTriangleWatertight for triangles. Kept for quads (one parallelogram has
+/// no inner edge) and for the light pdfs, which need the (a, b) of this parametrisation.
 VKP_FN float intersectParallelogram(vec3 Q, vec3 e1, vec3 e2, bool triangle, vec3 o, vec3 d,
                                     float tmin, float tmax, OUT(vec2) ab) {
     vec3 pv = cross(d, e2);
@@ -49,6 +52,63 @@ VKP_FN float intersectParallelogram(vec3 Q, vec3 e1, vec3 e2, bool triangle, vec
     bool inside = (a >= 0.0f) && (a <= 1.0f) && (b >= 0.0f) && (b <= limitB);
     bool inRange = (t > tmin) && (t < tmax);
     return (inside && inRange) ? t : VKP_FAR;
+}
+
+// `precise` forbids the GLSL compiler to contract a * b - c * d into an fma, which would break the
+// exact antisymmetry of the edge functions below (and the bit-exact agreement with C++).
+#ifdef __cplusplus
+#define VKP_PRECISE
+#else
+#define VKP_PRECISE precise
+#endif
+
+/// Watertight ray/triangle test (Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection",
+/// JCGT 2(1), 2013, sec. 3): the ray is made the +z axis of a sheared frame (z = the axis of the
+/// largest |d| component, x and y the next two cyclically, swapped when d_z < 0), the vertices are
+/// moved into it, and the 2D edge functions u, v, w of the projected triangle decide the hit.
+/// Watertight: a vertex's sheared coordinates depend only on the vertex and the ray, and the edge
+/// function of an edge seen from the neighbour is computed from the same two vertices in the other
+/// order, which in IEEE arithmetic gives exactly the negated value (no fma contraction: VKP_PRECISE).
+/// So a ray can never pass between two triangles that share an edge (bit-identical vertices);
+/// exactly on the edge it hits both. The paper's double-precision fallback for u, v or w == 0 is
+/// left out: it only improves which of the two is reported, not watertightness.
+/// ab receives the barycentric weights (of v1, of v2): the hit point is v0 + a (v1 - v0) +
+/// b (v2 - v0). A triangle of zero area in the sheared frame (det = u + v + w = 0) is missed.
+VKP_FN float intersectTriangleWatertight(vec3 v0, vec3 v1, vec3 v2, vec3 o, vec3 d, float tmin,
+                                         float tmax, OUT(vec2) ab) {
+    vec3 ad = abs(d);
+    int kz = (ad.x > ad.y) ? ((ad.x > ad.z) ? 0 : 2) : ((ad.y > ad.z) ? 1 : 2);
+    int kx = (kz == 2) ? 0 : kz + 1;
+    int ky = (kx == 2) ? 0 : kx + 1;
+    if (d[kz] < 0.0f) {
+        int k = kx;
+        kx = ky;
+        ky = k;
+    }
+    float sz = 1.0f / d[kz];
+    float sx = d[kx] * sz;
+    float sy = d[ky] * sz;
+    vec3 A = v0 - o;
+    vec3 B = v1 - o;
+    vec3 C = v2 - o;
+    VKP_PRECISE float axs = A[kx] - sx * A[kz];
+    VKP_PRECISE float ays = A[ky] - sy * A[kz];
+    VKP_PRECISE float bxs = B[kx] - sx * B[kz];
+    VKP_PRECISE float bys = B[ky] - sy * B[kz];
+    VKP_PRECISE float cxs = C[kx] - sx * C[kz];
+    VKP_PRECISE float cys = C[ky] - sy * C[kz];
+    VKP_PRECISE float u = cxs * bys - cys * bxs;
+    VKP_PRECISE float v = axs * cys - ays * cxs;
+    VKP_PRECISE float w = bxs * ays - bys * axs;
+    bool neg = (u < 0.0f) || (v < 0.0f) || (w < 0.0f);
+    bool pos = (u > 0.0f) || (v > 0.0f) || (w > 0.0f);
+    float det = u + v + w;
+    float tScaled = u * (sz * A[kz]) + v * (sz * B[kz]) + w * (sz * C[kz]);
+    float inv = 1.0f / det;
+    float t = tScaled * inv;
+    ab = vec2(v * inv, w * inv);
+    bool hit = !(neg && pos) && (det != 0.0f) && (t > tmin) && (t < tmax);
+    return hit ? t : VKP_FAR;
 }
 
 /// Header word of a packed primitive (see GpuPrim).
@@ -82,9 +142,36 @@ VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OU
         vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
         vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
         vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
-        t = intersectParallelogram(p0, e1, e2, kind == PRIM_TRIANGLE, o, d, tmin, tmax, ab);
+        if (kind == PRIM_TRIANGLE) {
+            // GpuPrim stores edges: v0 + e1 reproduces v1 exactly only when the subtraction
+            // v1 - v0 was exact, so neighbours may disagree on a shared vertex by an ulp.
+            // Zero-area triangles are never hit (scenes/README.md: edges parallel to within 1e-6
+            // radians, |e1 x e2| <= 1e-6 |e1| |e2|, as the loader decides it); primNormal could not
+            // normalise their normal. Also catches a normal whose square underflows.
+            vec3 n = cross(e1, e2);
+            t = intersectTriangleWatertight(p0, p0 + e1, p0 + e2, o, d, tmin, tmax, ab);
+            if (!(dot(n, n) > (1.0e-12f * dot(e1, e1)) * dot(e2, e2)) || !(dot(n, n) > 0.0f)) t = VKP_FAR;
+        } else {
+            t = intersectParallelogram(p0, e1, e2, false, o, d, tmin, tmax, ab);
+        }
     }
     return t;
+}
+
+/// The hit point of the ray o + t d on primitive p (ab: intersectPrim's surface parameters),
+/// recomputed from the primitive instead of o + t d, whose error grows with the distance |o|
+/// travelled (a camera far away): a parallelogram's or triangle's Q + a e1 + b e2 and a sphere's
+/// c + R (x - c) / |x - c| err by a few ulps of the primitive's own coordinates, which is what
+/// offsetRayOrigin's offset is sized for (Wachter and Binder, Ray Tracing Gems ch. 6, sec. 6.2.1).
+VKP_FN vec3 primHitPoint(GpuPrim p, vec3 o, vec3 d, float t, vec2 ab) {
+    vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
+    vec3 x = o + t * d;
+    if (primKind(p) == PRIM_SPHERE) {
+        vec3 f = x - p0;
+        float len = length(f);
+        return (len > 0.0f) ? p0 + f * (p.p1.w / len) : x;
+    }
+    return p0 + ab.x * vec3(p.p1.x, p.p1.y, p.p1.z) + ab.y * vec3(p.p2.x, p.p2.y, p.p2.z);
 }
 
 /// Geometric normal (unit, the primitive's front side: outward for spheres, e1 x e2 otherwise)

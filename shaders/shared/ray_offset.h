@@ -1,4 +1,22 @@
 // Spawning secondary rays without self-intersection and without a scene-scale epsilon.
+//
+// Policy (Wachter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray
+// Tracing Gems, 2019, ch. 6):
+//  1. The hit point is recomputed from the primitive (intersect.h primHitPoint: Q + a e1 + b e2,
+//     or the sphere's centre + R * unit direction), so that its error is a few ulps of the
+//     primitive's own coordinates, whatever the distance the ray travelled.
+//  2. The new ray starts at that point moved off the surface along the geometric normal, on the
+//     side the ray leaves to (offsetRayOrigin): by 256 ulps of each coordinate (an integer step
+//     on the float's bit pattern, so the offset is relative and works at any scale and distance
+//     from the origin), or by 2^-16 absolute for coordinates below 2^-5, where ulps become too
+//     small to cover the absolute error of the arithmetic that produced them.
+//  3. Rays start at t = 0: no t_min. A shadow ray runs between two such offset points
+//     (shadowRayTo), so neither its start nor its end surface can be hit, without a relative
+//     epsilon on its length.
+// A fixed t_min (the book's 0.001) is a length in scene units: too large for a scene scaled by 1e-4
+// (it skips real hits within 0.001: light leaks in corners) and too small for one scaled by 1e5 or
+// moved 1e5 from the origin (rounding there is ~0.01: rays hit the surface they leave).
+// tests/stress/test_stress_ray_offset.cpp measures both policies on the shared intersection code.
 #ifndef VKP_RAY_OFFSET_H
 #define VKP_RAY_OFFSET_H
 #include "glsl_compat.h"
@@ -21,6 +39,24 @@ VKP_FN vec3 offsetRayOrigin(vec3 p, vec3 n) {
     return vec3(abs(p.x) < origin ? p.x + floatScale * n.x : pi.x,
                 abs(p.y) < origin ? p.y + floatScale * n.y : pi.y,
                 abs(p.z) < origin ? p.z + floatScale * n.z : pi.z);
+}
+
+/// Shadow ray from xo (a shading point already moved off its surface by offsetRayOrigin) to the
+/// point y of a light whose geometric normal at y is ny (unit, either orientation). Returns the
+/// unit direction (xyz) and the length (w) to trace with t in (0, w) (world units):
+///  - y is moved off the light towards xo by offsetRayOrigin (its own rounding, a few ulps of |y|),
+///  - the direction is that of the segment between the two offset points (not the direction that
+///    was sampled from the unoffset shading point: from xo it would meet the light's plane early by
+///    the offset / cos, which a far-away scene turns into a whole-light false occlusion),
+///  - the length is cut by 2^-14 of itself: the distance an intersection routine computes along a
+///    ray errs by a few ulps of t itself, 2^-14 allows for 1 / |cos| up to ~100 at the light.
+/// xo == y after offsetting gives length 0 (no ray).
+VKP_FN vec4 shadowRayTo(vec3 xo, vec3 y, vec3 ny) {
+    vec3 towards = xo - y;
+    vec3 yo = offsetRayOrigin(y, (dot(towards, ny) >= 0.0f) ? ny : -ny);
+    vec3 s = yo - xo;
+    float len = length(s);
+    return (len > 0.0f) ? vec4(s / len, len * (1.0f - 1.0f / 16384.0f)) : vec4(0.0f, 0.0f, 1.0f, 0.0f);
 }
 
 VKP_END

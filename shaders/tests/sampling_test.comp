@@ -36,9 +36,13 @@
 //                 out0.y = fresnelDielectricExact(c, e)          (e read as eta_t / eta_i),
 //                 out0.z = dielectricReflectProbability(c, e, false) (e read as eta_i / eta_t),
 //                 out0.w = dielectricReflectProbability(c, e, true)
+// 15 RECT_LIGHT   inputs as 8 (rect_sampling.h: solid angle, area fallback)
+//                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfRectLight(dir),
+//                 out1.z = 1 if the spherical rectangle is used, else 0
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
+#include "shared/rect_sampling.h"
 #include "shared/rng.h"
 #include "shared/scatter.h"
 
@@ -66,6 +70,7 @@ const uint R_LAMBERTIAN = 11u;
 const uint R_METAL = 12u;
 const uint R_DIELECTRIC = 13u;
 const uint R_FRESNEL = 14u;
+const uint R_RECT_LIGHT = 15u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -121,6 +126,12 @@ void main() {
                      : pdfQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
         out1.zw = tri ? invertTriangleLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir)
                       : invertQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
+    } else if (r == R_RECT_LIGHT) {
+        LightSample s = sampleRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w));
+        out0 = vec4(s.dir, s.dist);
+        out1.x = s.pdf;
+        out1.y = pdfRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
+        out1.z = useSphericalRect(in1.xyz, in2.xyz, sphericalRectInit(in0.xyz, in1.xyz, in2.xyz, in3.xyz)) ? 1.0 : 0.0;
     } else if (r == R_SPHERE_LIGHT) {
         LightSample s = sampleSphereLight(in0.xyz, in0.w, in3.xyz, in1.xy);
         out0 = vec4(s.dir, s.dist);

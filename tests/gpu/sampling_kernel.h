@@ -23,7 +23,7 @@ using glm::vec4;
 /// Routine ids of sampling_test.comp (push constant `routine`).
 enum Routine : std::uint32_t {
     kRng, kOnb, kCosineHemi, kUniformSphere, kUniformHemi, kUniformCone, kUniformDisk, kUniformBall,
-    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel
+    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight
 };
 
 /// Inputs in0..in3 of one item (binding 0: four vec4 per item).

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "shared/light_sampling.h"
+#include "shared/rect_sampling.h"
 #include "stat_suite.h"
 
 namespace {
@@ -145,6 +146,7 @@ void checkLight(const LightCase& c, std::uint32_t seed, double integralTol = 5e-
             if (rel > 1e-3) ++pdfMismatch;
         }
         // (d) round trip
+        if (!c.invert) continue;
         vec2 back = c.invert(s.dir);
         double ex = std::fabs(double(back.x) - xi.x);
         double ey = std::fabs(double(back.y) - xi.y);
@@ -187,6 +189,52 @@ TEST(LightStats, QuadSkewedFromBehind) {
     checkLight(quadCase("quad skewed", vec3(0.5f, 0.2f, -1.0f), vec3(1.5f, 0.2f, 0.6f),
                         vec3(0.9f, 1.1f, -0.2f), vec3(1.0f, 0.5f, 1.0f)),
                204);
+}
+
+// ---- Rectangles, uniform in solid angle (Urena et al. 2013; area sampling as fallback) --------
+
+LightCase rectCase(const std::string& name, vec3 Q, vec3 u, vec3 v, vec3 p, bool expectSolidAngle) {
+    LightCase c;
+    c.name = name;
+    c.sample = [=](vec2 xi) { return gpu::sampleRectLight(Q, u, v, p, xi); };
+    c.pdf = [=](vec3 d) { return gpu::pdfRectLight(Q, u, v, p, d); };
+    c.binning = planarBinning(p, Q, u, v, false);
+    EXPECT_EQ(gpu::useSphericalRect(u, v, gpu::sphericalRectInit(Q, u, v, p)), expectSolidAngle) << name;
+    return c;
+}
+
+TEST(LightStats, RectSolidAngleNear) {
+    checkLight(rectCase("rect near", kQ, kU, kV, vec3(0.2f, 0.1f, 1.7f), true), 211);
+}
+TEST(LightStats, RectSolidAngleOffAxisFromBehind) {
+    // Rotated rectangle (u, v not axis-aligned), seen from its back side.
+    const vec3 u(1.2f, 0.0f, 0.9f), v(0.0f, 0.7f, 0.0f);
+    checkLight(rectCase("rect rotated", vec3(0.0f, 0.0f, 0.0f), u, v, vec3(-0.8f, 1.5f, 1.3f), true), 212);
+}
+TEST(LightStats, RectSolidAngleGrazing) {
+    checkLight(rectCase("rect grazing", kQ, kU, kV, vec3(0.0f, -3.0f, 2.3f), true), 213);
+}
+TEST(LightStats, RectTinyFallsBackToArea) {
+    checkLight(rectCase("rect tiny", kQ, kU, kV, vec3(3.0f, -4.0f, -300.0f), false), 214);
+}
+TEST(LightStats, ParallelogramFallsBackToArea) {
+    checkLight(rectCase("parallelogram", vec3(0.5f, 0.2f, -1.0f), vec3(1.5f, 0.2f, 0.6f), vec3(0.9f, 1.1f, -0.2f),
+                        vec3(1.0f, 0.5f, 1.0f), false),
+               215);
+}
+
+// The pdf of solid-angle sampling is the constant 1/S, S the rectangle's solid angle, which for a
+// square of side 2a seen from distance h above its centre is 4 asin(a^2 / (a^2 + h^2)).
+TEST(LightStats, RectSolidAngleIsExact) {
+    const float a = 0.5f, h = 0.8f;
+    const vec3 Q(-a, -a, 0.0f), u(2 * a, 0, 0), v(0, 2 * a, 0), p(0, 0, h);
+    const double S = 4.0 * std::asin(double(a) * a / (double(a) * a + double(h) * h));
+    EXPECT_NEAR(gpu::sphericalRectInit(Q, u, v, p).S, S, 1e-5 * S);
+    UniformSource rng(216);
+    for (int i = 0; i < 1000; ++i) {
+        gpu::LightSample s = gpu::sampleRectLight(Q, u, v, p, rng.next2());
+        EXPECT_NEAR(s.pdf, 1.0 / S, 1e-5 / S);
+    }
 }
 
 // ---- Triangles ----------------------------------------------------------------------------------

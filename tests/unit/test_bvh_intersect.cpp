@@ -2,7 +2,9 @@
 // rays (infinite inverse direction) on a box face, 0 * inf = NaN, rays starting inside, flat
 // boxes, inverted (empty) boxes; and a random comparison with a double-precision reference.
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -156,6 +158,160 @@ TEST(BvhIntersect, SphereTangentAtOrigin) {
     EXPECT_EQ(vkp::gpu::intersectSphere(vec3(0), 1.0f, vec3(1, 0, 0), vec3(0, 1, 0), 0.0f, 10.0f), VKP_FAR);
     EXPECT_FLOAT_EQ(vkp::gpu::intersectSphere(vec3(0), 1.0f, vec3(0, 0, -3), vec3(0, 0, 1), 0.0f, 10.0f), 2.0f);
     EXPECT_FLOAT_EQ(vkp::gpu::intersectSphere(vec3(0), -1.0f, vec3(0), vec3(0, 0, 1), 0.0f, 10.0f), 1.0f);
+}
+
+}  // namespace
+
+// ---- Accuracy of the sphere test far from the origin and for large radii, watertight triangles,
+// zero-area triangles and reprojected hit points (issue "accurate and numerically stable").
+namespace {
+
+using glm::dvec3;
+
+/// Near root of |o + t d - c| = r in double precision (d unit), or -1 on a miss.
+double sphereRef(dvec3 c, double r, dvec3 o, dvec3 d) {
+    const dvec3 f = o - c;
+    const double b = glm::dot(f, d);
+    const double disc = r * r - glm::dot(f - b * d, f - b * d);
+    if (disc < 0) return -1;
+    const double q = -b - (b > 0 ? -1.0 : 1.0) * std::sqrt(disc);  // the root without cancellation
+    const double t0 = (glm::dot(f, f) - r * r) / q, t1 = q;
+    return std::min(t0, t1) > 0 ? std::min(t0, t1) : std::max(t0, t1);
+}
+
+/// The textbook quadratic (b^2 - c with c = |f|^2 - r^2), for contrast.
+float sphereNaive(vec3 c, float r, vec3 o, vec3 d) {
+    const vec3 f = o - c;
+    const float b = glm::dot(f, d), cc = glm::dot(f, f) - r * r, disc = b * b - cc;
+    if (disc < 0) return VKP_FAR;
+    return -b - std::sqrt(disc);
+}
+
+// A unit sphere 1e4 away from the ray origin (a distant camera), far from the world origin:
+// Haines et al.'s form keeps the hit within 1e-3 of the surface; the textbook quadratic, whose
+// |f|^2 = 1e8 swamps r^2 = 1, misses or lands ~0.1 off.
+TEST(BvhIntersect, SphereAccurateFromFarAway) {
+    vkp::test::Rng rng(31);
+    double worst = 0, worstNaive = 0;
+    int naiveMisses = 0, hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const vec3 c = rng.inBox(vec3(-1e5f), vec3(1e5f));
+        const vec3 o = c + 1e4f * rng.direction();
+        const vec3 target = c + 0.999f * rng.direction();
+        const vec3 d = glm::normalize(target - o);
+        const double ref = sphereRef(dvec3(c), 1.0, dvec3(o), dvec3(d));
+        if (ref < 0) continue;
+        ++hits;
+        const float t = vkp::gpu::intersectSphere(c, 1.0f, o, d, 0.0f, VKP_FAR);
+        ASSERT_NE(t, VKP_FAR) << i;
+        // Distance of the computed hit point from the sphere, in double.
+        worst = std::max(worst, std::abs(glm::length(dvec3(o) + double(t) * dvec3(d) - dvec3(c)) - 1.0));
+        const float tn = sphereNaive(c, 1.0f, o, d);
+        if (tn == VKP_FAR) ++naiveMisses;
+        else worstNaive = std::max(worstNaive, std::abs(glm::length(dvec3(o) + double(tn) * dvec3(d) - dvec3(c)) - 1.0));
+    }
+    std::printf("distance of hits from the unit sphere seen from 1e4 away: Haines %.2e, textbook %.2e (%d of %d missed)\n",
+                worst, worstNaive, naiveMisses, hits);
+    EXPECT_GT(hits, 15000);
+    EXPECT_LT(worst, 2e-3);  // float resolution at |o| ~ 1e5 is 0.008; along the ray, t ~ 1e4 has ulp 1e-3
+    EXPECT_TRUE(naiveMisses > 0 || worstNaive > 0.05) << "teeth: the textbook form should fail here";
+}
+
+// A sphere of radius 1e4 seen from 0.5 above its surface: t ~ 0.5 to a relative 1e-3.
+TEST(BvhIntersect, SphereAccurateForLargeRadius) {
+    vkp::test::Rng rng(32);
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const vec3 n = rng.direction();
+        const vec3 c(0.0f);
+        const vec3 o = c + (1e4f + 0.5f) * n;
+        vec3 d = -n + 0.3f * rng.direction();
+        d = glm::normalize(d);
+        const double ref = sphereRef(dvec3(c), 1e4, dvec3(o), dvec3(d));
+        if (ref < 0) continue;
+        const float t = vkp::gpu::intersectSphere(c, 1e4f, o, d, 0.0f, VKP_FAR);
+        ASSERT_NE(t, VKP_FAR) << i;
+        worst = std::max(worst, std::abs(double(t) - ref) / ref);
+    }
+    std::printf("relative error of t at 0.5 above a sphere of radius 1e4: %.2e\n", worst);
+    EXPECT_LT(worst, 2e-3);  // |o| = 1e4 carries an absolute error of ~5e-4 into t ~ 0.5
+}
+
+// Rays through a shared edge or a shared vertex of a closed fan of triangles (not planar) hit at
+// least one of them (intersectTriangleWatertight with bit-identical shared vertices).
+TEST(BvhIntersect, WatertightSharedEdgesAndVertices) {
+    const vec3 centre(0.25f, -0.5f, 0.0f);
+    std::vector<vec3> rim;
+    for (int k = 0; k < 12; ++k) rim.push_back(vec3(std::cos(k * 0.5236f), std::sin(k * 0.5236f), 0.1f * k));
+    vkp::test::Rng rng(33);
+    int rays = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const int k = int(rng.below(12));
+        // Through the centre (a vertex shared by all) or a point of a spoke (an edge shared by two).
+        const vec3 target = (i % 2 == 0) ? centre : centre + rng.uniform(0.01f, 0.99f) * (rim[k] - centre);
+        const vec3 o = target + rng.uniform(0.5f, 3.0f) * (rng.direction() + vec3(0, 0, 1.5f));
+        const vec3 d = glm::normalize(target - o);
+        bool hit = false;
+        for (int j = 0; j < 12; ++j) {
+            glm::vec2 ab;
+            hit = hit || vkp::gpu::intersectTriangleWatertight(centre, rim[j], rim[(j + 1) % 12], o, d, 0.0f, VKP_FAR, ab) < VKP_FAR;
+        }
+        ++rays;
+        ASSERT_TRUE(hit) << "ray " << i << " slipped through the fan";
+    }
+    EXPECT_EQ(rays, 20000);
+}
+
+// Zero-area triangles (collinear or coincident vertices, or edges parallel within 1e-6 radians as
+// the loader defines it) are never hit, whatever the ray.
+TEST(BvhIntersect, ZeroAreaTrianglesAreNeverHit) {
+    vkp::test::Rng rng(34);
+    const vkp::Shape degenerate[] = {vkp::test::triangle(vec3(0, 0, 0), vec3(1, 0, 0), vec3(2, 0, 0)),
+                                     vkp::test::triangle(vec3(1, 1, 1), vec3(1, 1, 1), vec3(1, 1, 1)),
+                                     vkp::test::triangle(vec3(-1, 2, 0.5f), vec3(0.5f, 2, 0.5f), vec3(-1, 2, 0.5f)),
+                                     vkp::test::triangle(vec3(0.1f, 0.2f, 0.3f), vec3(0.3f, 0.6f, 0.9f), vec3(0.7f, 1.4f, 2.1f))};
+    for (const vkp::Shape& s : degenerate) {
+        const vkp::gpu::GpuPrim p = vkp::packShape(s, 0);
+        for (int i = 0; i < 20000; ++i) {
+            const vec3 target = s.p0 + rng.uniform() * (s.p2 - s.p0) + rng.uniform() * (s.p1 - s.p0);
+            const vec3 o = target + 3.0f * rng.direction();
+            glm::vec2 ab;
+            ASSERT_EQ(vkp::gpu::intersectPrim(p, o, glm::normalize(target - o), 0.0f, VKP_FAR, ab), VKP_FAR) << i;
+        }
+    }
+}
+
+// primHitPoint puts the hit point on the primitive to within ulps of the primitive's coordinates,
+// however far the ray came from; o + t d is off by ulps of |o|.
+TEST(BvhIntersect, ReprojectedHitPointsLieOnTheSurface) {
+    vkp::test::Rng rng(35);
+    const vkp::gpu::GpuPrim sphere = vkp::packShape(vkp::test::sphere(vec3(0.5f, -0.25f, 0.125f), 1.0f), 0);
+    const vkp::gpu::GpuPrim quad = vkp::packShape(vkp::test::quad(vec3(-1, -1, 0.3f), vec3(2, 0, 0.1f), vec3(0, 2, -0.2f)), 0);
+    double worstSphere = 0, worstQuad = 0, worstRaw = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const vec3 o = 1e4f * rng.direction();
+        for (const vkp::gpu::GpuPrim* p : {&sphere, &quad}) {
+            const vec3 target = p == &sphere ? vec3(0.5f, -0.25f, 0.125f) + 0.9f * rng.direction()
+                                             : vec3(-1, -1, 0.3f) + rng.uniform() * vec3(2, 0, 0.1f) + rng.uniform() * vec3(0, 2, -0.2f);
+            const vec3 d = glm::normalize(target - o);
+            glm::vec2 ab;
+            const float t = vkp::gpu::intersectPrim(*p, o, d, 0.0f, VKP_FAR, ab);
+            if (t == VKP_FAR) continue;
+            const vec3 x = vkp::gpu::primHitPoint(*p, o, d, t, ab), raw = o + t * d;
+            auto distance = [&](vec3 y) {
+                if (p == &sphere) return std::abs(glm::length(dvec3(y) - dvec3(0.5, -0.25, 0.125)) - 1.0);
+                const dvec3 n = glm::normalize(glm::cross(dvec3(2, 0, 0.1), dvec3(0, 2, -0.2)));
+                return std::abs(glm::dot(dvec3(y) - dvec3(-1, -1, 0.3), n));
+            };
+            (p == &sphere ? worstSphere : worstQuad) = std::max(p == &sphere ? worstSphere : worstQuad, distance(x));
+            worstRaw = std::max(worstRaw, distance(raw));
+        }
+    }
+    std::printf("distance from the surface, rays from 1e4 away: reprojected sphere %.2e, quad %.2e; o + t d %.2e\n", worstSphere,
+                worstQuad, worstRaw);
+    EXPECT_LT(worstSphere, 4e-7);
+    EXPECT_LT(worstQuad, 4e-7);
+    EXPECT_GT(worstRaw, 1e-5);  // teeth: without reprojection the error is that of |o| ~ 1e4
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ TEST(CliArgs, RenderWithEveryFlag) {
 
 TEST(CliArgs, DefaultsAndOtherCommands) {
     const CliArgs a = parse({"render", "s.json"});
-    EXPECT_EQ(a.sampler, Sampler::Mixture);
+    EXPECT_EQ(a.sampler, Sampler::Mis);
     EXPECT_FALSE(a.spp);
     EXPECT_EQ(parse({}).command, Command::Help);
     EXPECT_EQ(parse({"--version"}).command, Command::Version);

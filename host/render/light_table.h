@@ -1,0 +1,34 @@
+// The light list as the device reads it: one GpuLight per sampled object, with the probability
+// of picking it in proportion to its emitted power and a Walker/Vose alias table for O(1) picks.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shared/gpu_types.h"
+
+namespace vkp {
+
+/// Emitted power of a sampled shape, up to the factor pi shared by all diffuse emitters:
+/// luminance(emit) * area * (number of emitting faces: 2 for an emitting lambertian or a
+/// two-sided diffuse_light, else 1). 0 for an object that does not emit.
+/// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722).
+double lightPower(const Scene& scene, std::uint32_t shape);
+
+/// Alias table for the discrete distribution `weights` (non-negative, any scale; all zero gives
+/// an empty table). threshold[i] in [0,1], alias[i] < n; the probability of i is
+/// (threshold[i] + sum over j with alias[j] = i of (1 - threshold[j])) / n = weights[i] / sum.
+struct AliasTable {
+    std::vector<float> probability;  ///< weights[i] / sum
+    std::vector<float> threshold;
+    std::vector<std::uint32_t> alias;
+};
+AliasTable buildAliasTable(const std::vector<double>& weights);
+
+/// One GpuLight per entry of scene.lights, in order; primOfShape maps a shape to its primitive.
+std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape);
+
+/// Number of entries of scene.lights whose material emits.
+std::uint32_t emittingLightCount(const Scene& scene);
+
+}  // namespace vkp

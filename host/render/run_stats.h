@@ -1,0 +1,63 @@
+// The numbers of one render, written by `vkpath render --stats-json FILE` for scripts (the
+// benchmark suite, tools/bench). The keys are documented in README "Benchmarks".
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "render/error_metrics.h"
+
+namespace vkp {
+
+struct RunStats {
+    std::string version;   ///< VKPATH_VERSION
+    std::string scene;     ///< the scene file as given on the command line
+    std::string sampler;   ///< bsdf | light | mixture
+    std::string variant;   ///< Features::name() of the pipeline
+    bool fullVariant = false;
+    std::uint32_t width = 0, height = 0, maxDepth = 0, seed = 0, samplesPerDispatch = 1;
+    std::uint32_t spp = 0;          ///< samples per pixel reached
+    std::uint32_t sppRequested = 0;
+    double timeLimit = 0.0;         ///< --time (s), 0 if none
+    std::uint64_t rays = 0;         ///< rays traced (counted on the device)
+    std::uint64_t firstBatchRays = 0;
+    std::uint64_t nonfinite = 0, loopGuard = 0;
+    // Wall times in seconds.
+    double secondsTotal = 0.0;        ///< process start to the end of the last output
+    double secondsSceneLoad = 0.0;    ///< reading and validating the scene file
+    double secondsBvh = 0.0;          ///< BVH build + flattening
+    double secondsSetup = 0.0;        ///< Vulkan instance + device
+    double secondsUpload = 0.0;       ///< Renderer construction: buffers, upload, pipeline creation
+    double secondsFirstBatch = 0.0;   ///< the first batch (1 spp): includes the shader JIT
+    double secondsRender = 0.0;       ///< every batch, the first included
+    double secondsToFirstSample = 0.0;  ///< process start to the end of the first batch
+    double secondsCheckpoints = 0.0;  ///< image read-backs + error rows
+    double secondsOutput = 0.0;       ///< writing dumps and final images
+    std::uint32_t checkpoints = 0;
+    // The device.
+    std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;
+    /// LP_NUM_THREADS and MESA_SHADER_CACHE_DIR as set in the environment (empty if unset).
+    std::string lpNumThreads, mesaShaderCacheDir;
+    /// The final errors, when rendered with --reference.
+    std::optional<ErrorMetrics> error;
+    std::string reference;
+
+    std::uint64_t pixels() const { return std::uint64_t(width) * height; }
+    std::uint64_t samples() const { return pixels() * spp; }
+};
+
+/// The stats as a JSON object (pretty-printed, keys in a fixed order, non-finite numbers as null).
+/// Top-level keys scripts may rely on: spp, samples, rays, seconds_total, seconds_render,
+/// samples_per_second, rays_per_second, nonfinite_samples, device (an object: name, type, driver,
+/// driver_info, vulkan). Rates are per second of rendering (seconds_render); the *_steady rates leave
+/// out the first batch (shader JIT).
+std::string runStatsJson(const RunStats& stats);
+
+/// Writes runStatsJson(stats) to `path` atomically (core/atomic_file.h). Throws InputError.
+void writeRunStatsJson(const RunStats& stats, const std::filesystem::path& path);
+
+/// `s` as a JSON string literal, quotes included (control characters escaped as \u00XX).
+std::string jsonString(const std::string& s);
+
+}  // namespace vkp

@@ -1,0 +1,51 @@
+// glTF 2.0 scenes (.gltf with external or embedded buffers, .glb) -> Scene, read with Debian's
+// tinygltf. What is read and how it maps to the Scene is in scenes/README.md ("glTF").
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace vkp {
+
+/// Choices of the command line for a glTF scene.
+struct GltfOptions {
+    std::optional<std::uint32_t> scene;   ///< --gltf-scene N (default: the file's "scene", else scene 0)
+    std::optional<std::uint32_t> camera;  ///< --camera N: index into the file's cameras (default: the first
+                                          ///< perspective camera a node of the scene uses)
+    /// --width / --height: both given: that size; one given: the other follows the camera's aspect
+    /// ratio; none: 512 pixels on the long side.
+    std::optional<std::uint32_t> width, height;
+};
+
+/// Default long side of the image, in pixels, when neither the file nor the options give a size.
+inline constexpr std::uint32_t kGltfDefaultImageSide = 512;
+/// Most triangles one load may produce (counted over every node that instances a mesh).
+inline constexpr std::uint64_t kGltfMaxTriangles = 1ull << 26;
+/// Most vertices one load may produce (over every instanced primitive).
+inline constexpr std::uint64_t kGltfMaxVertices = 1ull << 26;
+
+/// Load a glTF 2.0 file as a whole scene: the triangles of the chosen scene's node hierarchy
+/// (world space), its materials (MaterialType::Pbr) and textures, emissive triangles as lights,
+/// and a camera (the file's, or one that frames the scene's bounds). Render settings are the JSON
+/// defaults. Warnings (e.g. an extension used but not implemented) go to Scene::warnings.
+/// Throws InputError with one line "<file>: <place>: <what is wrong>", where place names the
+/// mesh / primitive / accessor / material / node / image.
+Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& options = {});
+
+/// How a glTF file is placed into an existing scene (the JSON object {"type": "gltf", ...}).
+struct GltfInclude {
+    glm::dmat4 transform{1.0};              ///< applied after the file's node transforms
+    std::optional<std::uint32_t> material;  ///< every triangle gets this Scene material instead of the file's
+    std::optional<std::uint32_t> sceneIndex;  ///< default: the file's default scene
+};
+
+/// Append the triangles of a glTF file's scene to scene: shapes, lights (emissive triangles),
+/// materials and textures (unless include.material), vertex attributes and warnings. Cameras are
+/// ignored. Throws InputError like loadSceneGltf.
+void appendGltf(Scene& scene, const std::filesystem::path& file, const GltfInclude& include);
+
+}  // namespace vkp

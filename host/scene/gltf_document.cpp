@@ -1,0 +1,294 @@
+// Reading a glTF file into a tinygltf::Model, with the checks tinygltf 2.7 leaves out: the GLB
+// container (glTF 2.0 sec. 4.4), JSON nesting depth, file access only through our callbacks (so a
+// missing .bin or image is an error naming it), images decoded by stb_image (bounds of a GLB
+// image's bufferView checked first), the asset version and the required / used extensions.
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <map>
+#include <system_error>
+
+#include "core/errors.h"
+#include "scene/gltf_parts.h"
+#include "scene/json_reader.h"
+
+namespace vkp::gltf {
+
+namespace {
+
+constexpr std::size_t kMaxJsonNesting = 256;
+constexpr int kMaxImageSide = 16384;
+
+/// What the callbacks tinygltf calls need, and what they found wrong.
+struct LoadContext {
+    const tinygltf::Model* model = nullptr;
+    std::map<std::string, std::string> unreadable;  ///< path -> reason
+};
+
+bool fileExists(const std::string& path, void* user) {
+    // tinygltf tries <base dir>/<uri>, then ./<uri>: only the first (absolute) one is ours.
+    const std::filesystem::path p(path);
+    std::error_code ec;
+    if (!p.is_absolute()) return false;
+    if (std::filesystem::is_regular_file(p, ec)) return true;
+    auto* ctx = static_cast<LoadContext*>(user);
+    ctx->unreadable.emplace(path, std::filesystem::exists(p, ec) ? "not a regular file" : "no such file");
+    return false;
+}
+
+std::string expandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    auto* ctx = static_cast<LoadContext*>(user);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) {
+        ctx->unreadable.emplace(path, "cannot open the file (permissions?)");
+        if (err) *err += "cannot open";
+        return false;
+    }
+    const std::streamoff size = in.tellg();
+    if (size < 0 || static_cast<std::uint64_t>(size) >= (1ull << 32)) {
+        ctx->unreadable.emplace(path, "cannot read (4 GiB or larger?)");
+        if (err) *err += "too large";
+        return false;
+    }
+    out->resize(static_cast<std::size_t>(size));
+    in.seekg(0);
+    if (size > 0 && !in.read(reinterpret_cast<char*>(out->data()), size)) {
+        ctx->unreadable.emplace(path, "read error");
+        if (err) *err += "read error";
+        return false;
+    }
+    return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "vkpath never writes glTF files";
+    return false;
+}
+
+/// stb_image's reason, printable ASCII only (it may quote bytes of the file, e.g. a PNG chunk type).
+std::string stbReason() {
+    const char* r = stbi_failure_reason();
+    std::string out = r ? r : "unknown reason";
+    for (char& c : out) {
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+    }
+    return out;
+}
+
+/// tinygltf's image callback: decode with stb_image to RGBA8. A GLB image's bufferView is checked
+/// against its buffer here, before bytes is read (tinygltf 2.7 does not check it).
+bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
+               const unsigned char* bytes, int size, void* user) {
+    auto* ctx = static_cast<LoadContext*>(user);
+    const std::string where = "image " + std::to_string(index) + ": ";
+    if (image->bufferView >= 0) {
+        const auto& views = ctx->model->bufferViews;
+        const auto& view = views.at(static_cast<std::size_t>(image->bufferView));  // tinygltf checked both
+        const auto& buffer = ctx->model->buffers.at(static_cast<std::size_t>(view.buffer));
+        if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
+            *err += where + "bufferView " + std::to_string(image->bufferView) + " (bytes " +
+                    std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
+                    ") is outside buffer " + std::to_string(view.buffer) + " (" +
+                    std::to_string(buffer.data.size()) + " bytes)";
+            return false;
+        }
+    }
+    if (size <= 0) {
+        *err += where + "no image data";
+        return false;
+    }
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
+        *err += where + "cannot decode (PNG or JPEG expected): " + stbReason();
+        return false;
+    }
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
+        *err += where + "size " + std::to_string(w) + "x" + std::to_string(h) + " is not in [1, " +
+                std::to_string(kMaxImageSide) + "] per side";
+        return false;
+    }
+    unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
+    if (!pixels) {
+        *err += where + "cannot decode: " + stbReason();
+        return false;
+    }
+    image->width = w;
+    image->height = h;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(pixels, pixels + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+    stbi_image_free(pixels);
+    return true;
+}
+
+std::uint32_t le32(const std::string& b, std::size_t at) {
+    const auto* p = reinterpret_cast<const unsigned char*>(b.data()) + at;
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+
+/// Check the GLB container (header, JSON chunk, optional BIN chunk) so that tinygltf only sees
+/// consistent lengths. Returns the JSON chunk's offset and length.
+std::pair<std::size_t, std::size_t> checkGlb(const std::string& bytes, const std::string& file) {
+    const std::size_t size = bytes.size();
+    if (size < 20) fail(file, "GLB header", "truncated: " + std::to_string(size) + " bytes, a GLB needs at least 20");
+    const std::uint32_t version = le32(bytes, 4), length = le32(bytes, 8);
+    if (version != 2) fail(file, "GLB header", "container version " + std::to_string(version) + " (vkpath reads 2)");
+    if (length != size) {
+        fail(file, "GLB header", length > size ? "truncated: the header gives " + std::to_string(length) +
+                                                     " bytes, the file has " + std::to_string(size)
+                                               : "the header gives " + std::to_string(length) +
+                                                     " bytes but the file has " + std::to_string(size));
+    }
+    const std::uint64_t jsonLength = le32(bytes, 12);
+    if (le32(bytes, 16) != 0x4E4F534Au) fail(file, "GLB chunk 0", "the first chunk must be JSON");
+    if (jsonLength == 0 || 20 + jsonLength > length) {
+        fail(file, "GLB chunk 0", "JSON chunk length " + std::to_string(jsonLength) + " does not fit the file (" +
+                                      std::to_string(length) + " bytes)");
+    }
+    if (jsonLength % 4 != 0) fail(file, "GLB chunk 0", "JSON chunk length " + std::to_string(jsonLength) +
+                                                          " is not a multiple of 4");
+    const std::uint64_t bin = 20 + jsonLength;
+    if (bin < length) {
+        if (bin + 8 > length) fail(file, "GLB chunk 1", "truncated chunk header");
+        const std::uint64_t binLength = le32(bytes, bin);
+        if (le32(bytes, bin + 4) != 0x004E4942u) fail(file, "GLB chunk 1", "the second chunk must be BIN");
+        if (bin + 8 + binLength > length) {
+            fail(file, "GLB chunk 1", "BIN chunk length " + std::to_string(binLength) + " runs past the end of the file");
+        }
+        if (binLength == 0 || binLength % 4 != 0) {
+            fail(file, "GLB chunk 1", "BIN chunk length " + std::to_string(binLength) + " is not a positive multiple of 4");
+        }
+    }
+    return {20, static_cast<std::size_t>(jsonLength)};
+}
+
+/// Refuse JSON nested deeper than kMaxJsonNesting (tinygltf converts extras and extensions recursively).
+void checkNesting(const char* text, std::size_t n, const std::string& file) {
+    std::size_t depth = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonNesting) {
+                fail(file, "(document)", "JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+            }
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+}
+
+/// tinygltf's error text (possibly several lines) as one clause.
+std::string oneLine(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    std::string out;
+    for (char c : s) out += c == '\n' ? std::string("; ") : std::string(1, c);
+    return out;
+}
+
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+void checkAsset(const Document& doc) {
+    const auto& a = doc.model.asset;
+    auto major = [](const std::string& v) { return v.substr(0, v.find('.')); };
+    if (major(a.version) != "2") fail(doc.file, "asset/version", "\"" + a.version + "\": vkpath reads glTF 2.x");
+    if (!a.minVersion.empty() && a.minVersion != "2.0") {
+        fail(doc.file, "asset/minVersion", "\"" + a.minVersion + "\": vkpath reads glTF 2.0");
+    }
+}
+
+}  // namespace
+
+void fail(const std::string& file, const std::string& place, const std::string& message) {
+    throw InputError(json::formatError(file, place, message));
+}
+
+std::string line(const std::string& file, const std::string& place, const std::string& message) {
+    return json::formatError(file, place, message);
+}
+
+bool extensionImplemented(const std::string& name) {
+    static const char* const kImplemented[] = {
+        "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_transmission",
+        "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization",
+    };
+    return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
+}
+
+Document readDocument(const std::filesystem::path& path) {
+    Document doc;
+    doc.file = path.string();
+    const std::string bytes = json::readTextFile(path);
+    if (bytes.size() >= (1ull << 32) - 1) fail(doc.file, "(document)", "4 GiB or larger: not a glTF file vkpath can read");
+
+    std::error_code ec;
+    std::filesystem::path base = std::filesystem::absolute(path, ec).parent_path();
+    LoadContext ctx;
+    ctx.model = &doc.model;
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &ctx});
+    loader.SetImageLoader(&loadImage, &ctx);
+
+    std::string err, warn;
+    bool ok = false;
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    try {
+        if (binary) {
+            const auto [at, n] = checkGlb(bytes, doc.file);
+            checkNesting(bytes.data() + at, n, doc.file);
+            ok = loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned int>(bytes.size()), base.string());
+        } else {
+            checkNesting(bytes.data(), bytes.size(), doc.file);
+            ok = loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(),
+                                            static_cast<unsigned int>(bytes.size()), base.string());
+        }
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        fail(doc.file, "(document)", "out of memory while reading the file");
+    } catch (const std::exception& e) {
+        fail(doc.file, "(document)", std::string("invalid glTF: ") + e.what());
+    }
+    if (!ctx.unreadable.empty()) {
+        const auto& [p, why] = *ctx.unreadable.begin();
+        fail(doc.file, "uri \"" + std::filesystem::path(p).lexically_relative(base).string() + "\"",
+             "cannot read " + p + ": " + why);
+    }
+    if (!ok) {
+        const std::string what = oneLine(err);
+        if (startsWith(what, "[json.exception")) fail(doc.file, "(document)", "invalid JSON: " + what);
+        fail(doc.file, "(document)", "invalid glTF: " + (what.empty() ? std::string("tinygltf gave no reason") : what));
+    }
+    // tinygltf only warns about images it could not read (and we saw every read above): refuse them.
+    for (std::size_t i = 0; i < doc.model.images.size(); ++i) {
+        if (doc.model.images[i].image.empty()) {
+            fail(doc.file, "image " + std::to_string(i), "no image data (" + oneLine(warn) + ")");
+        }
+    }
+    checkAsset(doc);
+    for (const std::string& e : doc.model.extensionsRequired) {
+        if (!extensionImplemented(e)) {
+            fail(doc.file, "extensionsRequired", "extension " + e + " is required by the file but vkpath does not implement it");
+        }
+    }
+    for (const std::string& e : doc.model.extensionsUsed) {
+        if (!extensionImplemented(e)) {
+            doc.warnings.push_back(line(doc.file, "extensionsUsed", "extension " + e + " is not implemented by vkpath: ignored"));
+        }
+    }
+    return doc;
+}
+
+}  // namespace vkp::gltf

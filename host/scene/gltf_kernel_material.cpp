@@ -1,0 +1,43 @@
+// kernelMaterial: what the current kernel (the book's materials) renders for a glTF Pbr material,
+// until the kernel has the glTF BRDF (Lambertian + GGX, glTF 2.0 appendix B). An approximation,
+// chosen to be exact for the case that matters now (rough dielectrics with specularFactor 0).
+#include "scene/scene.h"
+
+namespace vkp {
+
+Material kernelMaterial(const Material& m) {
+    if (m.type != MaterialType::Pbr) return m;
+    Material k;
+    k.name = m.name;
+    k.emit = m.emit;
+    if (m.emits()) {
+        // Emitters become diffuse_light: emission kept (front face only unless doubleSided, the
+        // glTF convention); their reflection is dropped (as the book's lights, and exact for the
+        // black base colour exporters give lamps).
+        k.type = MaterialType::DiffuseLight;
+        k.twoSided = m.twoSided;
+        return k;
+    }
+    const glm::vec3 base(m.pbr.baseColor);
+    if (m.pbr.transmission > 0.0f && m.ior >= 1.0f) {
+        // Transmission (any amount) becomes smooth clear glass with the exact Fresnel equations:
+        // tint, roughness and partial transmission are dropped.
+        k.type = MaterialType::Dielectric;
+        k.albedo = glm::vec3(1.0f);
+        k.ior = m.ior;
+        k.fresnelExact = true;
+    } else if (m.pbr.metallic >= 0.5f || (m.pbr.transmission > 0.0f && m.ior == 0.0f)) {
+        // Mostly metallic: the book's fuzzy metal, F0 = base colour, fuzz = GGX alpha = roughness^2.
+        k.type = MaterialType::Metal;
+        k.albedo = base;
+        k.fuzz = m.pbr.roughness * m.pbr.roughness;
+    } else {
+        // Mostly dielectric: the Lambertian base alone, albedo = base colour; the specular layer
+        // (F0 = 0.04 by default, a few percent of the reflected light) is dropped.
+        k.type = MaterialType::Lambertian;
+        k.albedo = base;
+    }
+    return k;
+}
+
+}  // namespace vkp

@@ -1,0 +1,143 @@
+// The pieces of the glTF loader (gltf.h), one file each. Internal to host/scene.
+//   gltf_document.cpp   the file -> tinygltf::Model (GLB checks, file access, image decoding, extensions)
+//   gltf_accessor.cpp   validated accessor reads (strides, sparse, normalized integers)
+//   gltf_mesh.cpp       primitives -> world-space triangles, vertex attributes, lights
+//   gltf_material.cpp   materials, textures, samplers -> Scene (MaterialType::Pbr)
+//   gltf_camera.cpp     glTF camera or a framing camera -> Camera, image size
+//   gltf_scene.cpp      node hierarchy, loadSceneGltf, appendGltf
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/gltf.h"
+#include "scene/scene.h"
+
+namespace vkp::gltf {
+
+/// A glTF file read and checked at the document level.
+struct Document {
+    std::string file;  ///< the path as given (for messages)
+    tinygltf::Model model;
+    std::vector<std::string> warnings;  ///< "<file>: <place>: <message>" lines
+};
+
+/// Throw InputError "<file>: <place>: <message>" (forced onto one line).
+[[noreturn]] void fail(const std::string& file, const std::string& place, const std::string& message);
+/// "<file>: <place>: <message>" on one line, for warnings.
+std::string line(const std::string& file, const std::string& place, const std::string& message);
+
+/// Read a .gltf or .glb (by content: GLB starts with "glTF"), its buffers and images (decoded to
+/// RGBA8 with stb_image). Refuses a malformed GLB container, JSON nested deeper than 256 levels,
+/// a missing or unreadable buffer or image, a glTF major version other than 2, and any extension in
+/// extensionsRequired that vkpath does not implement; warns about one only in extensionsUsed.
+Document readDocument(const std::filesystem::path& file);
+
+/// Extensions vkpath reads (every other one is refused when required, warned about when used).
+bool extensionImplemented(const std::string& name);
+
+/// "mesh 2 ("box") primitive 0"
+std::string primitivePlace(const Document& doc, std::size_t mesh, std::size_t primitive);
+/// "node 4 ("camera")"
+std::string nodePlace(const Document& doc, std::size_t node);
+
+/// One accessor, validated on construction against its bufferView and buffer (bounds with
+/// strides, counts, component types, sparse indices and values), so reads cannot go out of range.
+class Accessor {
+public:
+    /// use says what the accessor is for in messages ("POSITION of mesh 0 primitive 1"); its type
+    /// must have components (1 SCALAR .. 4 VEC4) of one of the allowed TINYGLTF_COMPONENT_TYPE_*.
+    Accessor(const Document& doc, int index, std::string use, int components, std::initializer_list<int> allowed);
+
+    std::size_t count() const { return count_; }
+    int components() const { return components_; }  ///< 1 (SCALAR) .. 4 (VEC4)
+    int componentType() const { return componentType_; }
+    bool normalized() const { return normalized_; }
+
+    /// Every element as floats, count() * components() values: normalized integers map to [0,1] or
+    /// [-1,1] (glTF 2.0 sec. 3.11), other integers to their value; sparse substitution applied.
+    std::vector<float> floats() const;
+    /// Every element of a SCALAR accessor of unsigned integers (indices), sparse substitution applied.
+    std::vector<std::uint32_t> uints() const;
+
+    [[noreturn]] void fail(const std::string& message) const;
+    std::string place() const;
+
+private:
+    template <class Out>
+    void readDense(Out* out) const;
+    template <class Out>
+    void applySparse(Out* out) const;
+
+    const Document* doc_;
+    int index_;
+    std::string use_;
+    std::size_t count_ = 0;
+    int components_ = 0;
+    int componentType_ = 0;
+    bool normalized_ = false;
+    const std::uint8_t* data_ = nullptr;  ///< first element; null: no bufferView (zeros)
+    std::size_t stride_ = 0;
+    // sparse (count 0: none)
+    std::size_t sparseCount_ = 0;
+    const std::uint8_t* sparseIndices_ = nullptr;
+    int sparseIndexType_ = 0;
+    const std::uint8_t* sparseValues_ = nullptr;
+};
+
+/// Turns glTF materials into Scene materials on first use (or maps every one to an override).
+class MaterialMapper {
+public:
+    MaterialMapper(const Document& doc, Scene& scene, std::optional<std::uint32_t> override);
+    /// Scene material index for glTF material index m (-1: the glTF default material).
+    std::uint32_t material(int m);
+
+private:
+    TextureRef textureRef(const tinygltf::TextureInfo& info, bool srgb, const std::string& place);
+    TextureRef textureRef(int index, int texCoord, const tinygltf::ExtensionMap& extensions, bool srgb,
+                          const std::string& place);
+    /// A textureInfo inside an extension, {"index", "texCoord", "extensions"}, which tinygltf leaves as a value.
+    TextureRef extensionTexture(const tinygltf::Value* object, const char* key, bool srgb, const std::string& place);
+    std::uint32_t texture(int index, bool srgb, const std::string& place);
+    Material convert(int m);
+
+    const Document& doc_;
+    Scene& scene_;
+    std::optional<std::uint32_t> override_;
+    std::vector<std::int64_t> materialIndex_;  ///< glTF material -> Scene index (-1: not yet), last: default
+    std::vector<std::int64_t> imageIndex_;     ///< glTF image -> Scene::images index
+    std::vector<std::int64_t> textureIndex_;   ///< (glTF texture, srgb) -> Scene::textures index
+};
+
+/// Triangles and vertices a primitive yields (after strip / fan conversion), from accessor counts
+/// only. Refuses modes other than triangles, strips and fans, and a missing POSITION.
+struct PrimitiveSize {
+    std::uint64_t triangles = 0;
+    std::uint64_t vertices = 0;
+};
+PrimitiveSize primitiveSize(const Document& doc, std::size_t mesh, std::size_t primitive);
+
+/// Append one instance of a primitive, placed by world (column vectors, p_world = world * p), to
+/// scene: shapes (triangles, winding flipped when det(world) < 0 so the front stays the side the
+/// glTF front maps to), TriangleVertices, MeshVertices, and the light list for emitting materials.
+/// Refuses bad indices, non-finite positions, normals or coordinates out of float range.
+void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitive, const glm::dmat4& world,
+                     std::uint32_t material, Scene& scene);
+
+/// The camera of glTF camera c placed by its node's world matrix; the image size from options
+/// and the camera's aspectRatio. Refuses orthographic cameras and invalid perspective values.
+Camera cameraFromGltf(const Document& doc, std::size_t c, const glm::dmat4& world, const GltfOptions& options);
+/// A camera looking along -z at the centre of [lo, hi] (vfov 40 degrees) that sees all of it
+/// (file: for the message when that does not fit in floats).
+Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options);
+/// Width and height: both options; one of them and the aspect ratio (width / height, > 0); or
+/// kGltfDefaultImageSide on the long side.
+void imageSize(double aspect, const GltfOptions& options, Camera& camera);
+
+}  // namespace vkp::gltf

@@ -1,0 +1,246 @@
+// The node hierarchy of a glTF scene (glTF 2.0 sec. 3.5): world matrices, mesh and camera
+// instances; loadSceneGltf and appendGltf.
+#include <cmath>
+#include <limits>
+
+#include "core/errors.h"
+#include "scene/gltf_parts.h"
+
+namespace vkp::gltf {
+
+namespace {
+
+struct MeshInstance {
+    std::size_t node = 0;
+    std::size_t mesh = 0;
+    glm::dmat4 world{1.0};
+};
+struct CameraInstance {
+    std::size_t node = 0;
+    std::size_t camera = 0;
+    glm::dmat4 world{1.0};
+};
+struct Instances {
+    std::vector<MeshInstance> meshes;
+    std::vector<CameraInstance> cameras;  ///< in depth-first order of the hierarchy
+};
+
+std::vector<double> checked(const std::vector<double>& v, std::size_t n, const Document& doc, const std::string& place) {
+    if (v.empty()) return v;
+    if (v.size() != n) fail(doc.file, place, "must have " + std::to_string(n) + " numbers (got " + std::to_string(v.size()) + ")");
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!std::isfinite(v[i])) fail(doc.file, place + "/" + std::to_string(i), "must be finite");
+    }
+    return v;
+}
+
+/// The node's local matrix: "matrix" (column-major) or T * R * S (sec. 3.5.3).
+glm::dmat4 localMatrix(const Document& doc, std::size_t n) {
+    const tinygltf::Node& node = doc.model.nodes[n];
+    const std::string place = nodePlace(doc, n);
+    const std::vector<double> m = checked(node.matrix, 16, doc, place + "/matrix");
+    if (!m.empty()) {
+        glm::dmat4 out;
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) out[c][r] = m[std::size_t(4 * c + r)];
+        }
+        return out;
+    }
+    const std::vector<double> t = checked(node.translation, 3, doc, place + "/translation");
+    const std::vector<double> q = checked(node.rotation, 4, doc, place + "/rotation");
+    const std::vector<double> s = checked(node.scale, 3, doc, place + "/scale");
+    glm::dmat4 out(1.0);
+    if (!s.empty()) {
+        out[0][0] = s[0];
+        out[1][1] = s[1];
+        out[2][2] = s[2];
+    }
+    if (!q.empty()) {
+        glm::dvec4 v(q[0], q[1], q[2], q[3]);  // x, y, z, w
+        const double len = glm::length(v);
+        if (!(len > 0.0)) fail(doc.file, place + "/rotation", "must be a unit quaternion (got length 0)");
+        v /= len;
+        const double x = v.x, y = v.y, z = v.z, w = v.w;
+        glm::dmat3 r;  // columns of the rotation matrix of the unit quaternion (x, y, z, w)
+        r[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w)};
+        r[1] = {2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)};
+        r[2] = {2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)};
+        out = glm::dmat4(r) * out;
+    }
+    if (!t.empty()) out[3] = glm::dvec4(t[0], t[1], t[2], 1.0);
+    return out;
+}
+
+/// Every mesh and camera instance of the chosen scene, with world matrices (root * hierarchy).
+Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex, const glm::dmat4& root, Scene& out) {
+    const tinygltf::Model& model = doc.model;
+    std::vector<int> roots;
+    if (model.scenes.empty()) {
+        if (sceneIndex) fail(doc.file, "scenes", "the file has no scenes (--gltf-scene " + std::to_string(*sceneIndex) + ")");
+        // No scene: every node that is nobody's child.
+        std::vector<char> child(model.nodes.size(), 0);
+        for (const auto& n : model.nodes) {
+            for (int c : n.children) {
+                if (c >= 0 && std::size_t(c) < child.size()) child[std::size_t(c)] = 1;
+            }
+        }
+        for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+            if (!child[i]) roots.push_back(int(i));
+        }
+    } else {
+        const std::size_t s = sceneIndex ? *sceneIndex : model.defaultScene >= 0 ? std::size_t(model.defaultScene) : 0;
+        if (s >= model.scenes.size()) {
+            fail(doc.file, sceneIndex ? "--gltf-scene " + std::to_string(s) : std::string("scene"),
+                 "scene " + std::to_string(s) + " does not exist (the file has " + std::to_string(model.scenes.size()) +
+                     (model.scenes.size() == 1 ? " scene)" : " scenes)"));
+        }
+        roots = model.scenes[s].nodes;
+    }
+    Instances found;
+    std::vector<char> visited(model.nodes.size(), 0);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    auto push = [&](int n, const glm::dmat4& parent, const std::string& from) {
+        if (n < 0 || std::size_t(n) >= model.nodes.size()) {
+            fail(doc.file, from, "node " + std::to_string(n) + " does not exist (the file has " +
+                                     std::to_string(model.nodes.size()) + " nodes)");
+        }
+        stack.emplace_back(n, parent);
+    };
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) push(*it, root, "scene");
+    while (!stack.empty()) {
+        const auto [n, parent] = stack.back();
+        stack.pop_back();
+        const std::size_t i = std::size_t(n);
+        const tinygltf::Node& node = model.nodes[i];
+        if (visited[i]) {
+            fail(doc.file, nodePlace(doc, i), "is reached twice in the scene's hierarchy (a node has at most one parent: a cycle?)");
+        }
+        visited[i] = 1;
+        const glm::dmat4 world = parent * localMatrix(doc, i);
+        if (node.mesh >= 0) {
+            if (std::size_t(node.mesh) >= model.meshes.size()) {
+                fail(doc.file, nodePlace(doc, i) + "/mesh", "mesh " + std::to_string(node.mesh) + " does not exist (the file has " +
+                                                                std::to_string(model.meshes.size()) + " meshes)");
+            }
+            found.meshes.push_back({i, std::size_t(node.mesh), world});
+            if (node.skin >= 0) {
+                out.warnings.push_back(line(doc.file, nodePlace(doc, i), "skin ignored: the mesh is drawn in its bind pose, placed by the node"));
+            }
+        }
+        if (node.camera >= 0) {
+            if (std::size_t(node.camera) >= model.cameras.size()) {
+                fail(doc.file, nodePlace(doc, i) + "/camera", "camera " + std::to_string(node.camera) + " does not exist (the file has " +
+                                                                  std::to_string(model.cameras.size()) + " cameras)");
+            }
+            found.cameras.push_back({i, std::size_t(node.camera), world});
+        }
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) push(*it, world, nodePlace(doc, i) + "/children");
+    }
+    return found;
+}
+
+/// Append the instances' triangles to scene; returns the bounds of what was appended.
+std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Instances& inst,
+                                                  std::optional<std::uint32_t> materialOverride, Scene& scene) {
+    const tinygltf::Model& model = doc.model;
+    // Count first: refuse absurd totals before reading anything, and allocate once.
+    std::uint64_t triangles = 0, vertices = 0, uvVertices = 0;
+    for (const MeshInstance& mi : inst.meshes) {
+        const auto& mesh = model.meshes[mi.mesh];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const PrimitiveSize size = primitiveSize(doc, mi.mesh, p);
+            triangles += size.triangles;
+            vertices += size.vertices;
+            if (mesh.primitives[p].attributes.count("TEXCOORD_0")) uvVertices += size.vertices;
+            if (triangles > kGltfMaxTriangles || vertices > kGltfMaxVertices) {
+                fail(doc.file, primitivePlace(doc, mi.mesh, p) + " of " + nodePlace(doc, mi.node),
+                     "the scene would have more than " + std::to_string(triangles > kGltfMaxTriangles ? kGltfMaxTriangles : kGltfMaxVertices) +
+                         (triangles > kGltfMaxTriangles ? " triangles" : " vertices") + " (vkpath's limit)");
+            }
+        }
+        if (!mesh.weights.empty()) {
+            scene.warnings.push_back(line(doc.file, "mesh " + std::to_string(mi.mesh), "morph targets ignored: the base shape is drawn"));
+        }
+    }
+    const std::size_t firstShape = scene.shapes.size();
+    scene.shapes.reserve(firstShape + triangles);
+    scene.triangleVertices.reserve(scene.triangleVertices.size() + triangles);
+    scene.vertices.normal.reserve(scene.vertices.size() + vertices);
+    if (uvVertices) scene.vertices.uv.reserve(scene.vertices.size() + vertices);
+
+    MaterialMapper materials(doc, scene, materialOverride);
+    for (const MeshInstance& mi : inst.meshes) {
+        const auto& mesh = model.meshes[mi.mesh];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::uint32_t m = materials.material(mesh.primitives[p].material);
+            appendPrimitive(doc, mi.mesh, p, mi.world, m, scene);
+        }
+    }
+    if (!model.animations.empty()) {
+        scene.warnings.push_back(line(doc.file, "animations", "ignored: the scene is drawn at rest"));
+    }
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (std::size_t i = firstShape; i < scene.shapes.size(); ++i) {
+        for (const glm::vec3& p : {scene.shapes[i].p0, scene.shapes[i].p1, scene.shapes[i].p2}) {
+            lo = glm::min(lo, glm::dvec3(p));
+            hi = glm::max(hi, glm::dvec3(p));
+        }
+    }
+    return {lo, hi};
+}
+
+}  // namespace
+
+std::string nodePlace(const Document& doc, std::size_t node) {
+    const std::string& name = doc.model.nodes.at(node).name;
+    return "node " + std::to_string(node) + (name.empty() ? "" : " (\"" + name + "\")");
+}
+
+}  // namespace vkp::gltf
+
+namespace vkp {
+
+Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& options) {
+    gltf::Document doc = gltf::readDocument(file);
+    Scene scene;
+    scene.path = file;
+    scene.warnings = std::move(doc.warnings);
+    const gltf::Instances inst = gltf::traverse(doc, options.scene, glm::dmat4(1.0), scene);
+    const auto [lo, hi] = gltf::appendInstances(doc, inst, std::nullopt, scene);
+
+    const gltf::CameraInstance* chosen = nullptr;
+    if (options.camera) {
+        if (*options.camera >= doc.model.cameras.size()) {
+            gltf::fail(doc.file, "--camera " + std::to_string(*options.camera),
+                       "the file has " + std::to_string(doc.model.cameras.size()) + " cameras");
+        }
+        for (const auto& c : inst.cameras) {
+            if (c.camera == *options.camera) {
+                chosen = &c;
+                break;
+            }
+        }
+        if (!chosen) {
+            gltf::fail(doc.file, "--camera " + std::to_string(*options.camera), "no node of the scene uses this camera");
+        }
+    } else {
+        for (const auto& c : inst.cameras) {
+            if (doc.model.cameras[c.camera].type == "perspective") {
+                chosen = &c;
+                break;
+            }
+        }
+    }
+    scene.camera = chosen ? gltf::cameraFromGltf(doc, chosen->camera, chosen->world, options)
+                          : gltf::framingCamera(doc.file, lo, hi, options);
+    return scene;
+}
+
+void appendGltf(Scene& scene, const std::filesystem::path& file, const GltfInclude& include) {
+    gltf::Document doc = gltf::readDocument(file);
+    scene.warnings.insert(scene.warnings.end(), doc.warnings.begin(), doc.warnings.end());
+    const gltf::Instances inst = gltf::traverse(doc, include.sceneIndex, include.transform, scene);
+    gltf::appendInstances(doc, inst, include.material, scene);
+}
+
+}  // namespace vkp

@@ -1,0 +1,265 @@
+// Shared pieces of the accuracy tests (tests/gpu/test_gpu_analytic*.cpp, test_gpu_convergence*.cpp,
+// tests/stress): rendering a Scene held in memory, z-tests of pixel means against expected values
+// with tolerances in standard errors, and the Sidak-corrected critical value of a test suite.
+//
+// Statistics. A pixel's mean over n samples has variance sigma^2 / n, estimated by
+// PixelSums::varianceOfMean (sample variance / n). A region (a block of pixels, or a list of
+// pixels) is summarised by the average of its pixel means, whose variance is sum(var_i) / k^2 for
+// k pixels with independent samples. A z-test compares |mean - expected| with
+//     z_crit * sqrt(var) + (n - 1) 2^-24 |expected|,
+// where the second term is the worst-case relative error of a sequential float sum of n terms
+// (Higham, "Accuracy and Stability of Numerical Algorithms", sec. 4.2): the device adds samples to
+// float32 sums, which matters only for pixels whose samples are all equal (zero variance).
+// z_crit comes from a suite budget: a test executable declares that it performs at most B z-tests
+// at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B) (Sidak 1967:
+// for jointly normal statistics, correlated or not, the family-wise false-failure probability is
+// then <= alpha). The executable checks at exit that it did not exceed B.
+// The region means are averages of >= 4096 samples, so the normal approximation is adequate for
+// the tails used here (z ~ 4.4-4.6) as long as the samples are not heavy-tailed; each test says
+// why its samples are not.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bvh/flatten.h"
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "vk/device.h"
+
+namespace vkp::test {
+
+/// z with P(|Z| > z) = alpha for a standard normal Z (bisection on erfc; alpha in (0, 1)).
+inline double normalTwoSidedZ(double alpha) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (std::erfc(mid / std::sqrt(2.0)) > alpha) lo = mid; else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// The z-test budget of one test executable (see the file comment). One global instance per
+/// executable: zBudget().
+class ZBudget {
+public:
+    /// Declares at most `tests` z-tests at family-wise false-failure probability `familyAlpha`.
+    void declare(int tests, double familyAlpha) {
+        budget_ = tests;
+        alpha_ = familyAlpha;
+        z_ = normalTwoSidedZ(1.0 - std::pow(1.0 - familyAlpha, 1.0 / tests));
+    }
+    /// The critical |z| of one test; counts it.
+    double take() {
+        ++used_;
+        return z_;
+    }
+    double z() const { return z_; }
+    int used() const { return used_; }
+    int budget() const { return budget_; }
+    double alpha() const { return alpha_; }
+    double maxAbsZ = 0.0;  ///< largest |z| seen (reported)
+
+private:
+    int budget_ = 1, used_ = 0;
+    double alpha_ = 0.01, z_ = 5.0;
+};
+inline ZBudget& zBudget() {
+    static ZBudget b;
+    return b;
+}
+
+/// gtest environment that declares the budget before the tests and checks it after them.
+class ZBudgetEnvironment : public ::testing::Environment {
+public:
+    ZBudgetEnvironment(int tests, double familyAlpha) : tests_(tests), alpha_(familyAlpha) {}
+    void SetUp() override {
+        zBudget().declare(tests_, alpha_);
+        std::printf("z-test budget: %d tests, family-wise alpha %.3g, critical |z| %.3f\n", tests_, alpha_,
+                    zBudget().z());
+    }
+    void TearDown() override {
+        std::printf("z-tests used: %d of %d, largest |z| %.2f\n", zBudget().used(), zBudget().budget(),
+                    zBudget().maxAbsZ);
+        EXPECT_LE(zBudget().used(), zBudget().budget()) << "raise the declared z-test budget";
+    }
+
+private:
+    int tests_;
+    double alpha_;
+};
+
+/// Mean of a region and the variance of that mean.
+struct Estimate {
+    double mean = 0.0;
+    double var = 0.0;  ///< variance of `mean`
+    double n = 0.0;    ///< samples per pixel (the smallest in the region)
+};
+
+/// Per-pixel means, variances of the means and sample counts of a render.
+struct PixelStats {
+    Image mean, var;
+    std::vector<double> n;
+    std::uint32_t width = 0, height = 0;
+    explicit PixelStats(const PixelSums& s) : mean(s.mean()), var(s.varianceOfMean()), width(s.width), height(s.height) {
+        for (std::size_t i = 0; i < s.sum.size() / 4; ++i) n.push_back(s.sum[4 * i + 3]);
+    }
+    double samples(std::uint32_t x, std::uint32_t y) const { return n[std::size_t(y) * width + x]; }
+};
+
+struct Pixel {
+    std::uint32_t x, y;
+};
+
+/// Average over `pixels` of channel c (each pixel's mean weighted equally).
+inline Estimate average(const PixelStats& s, const std::vector<Pixel>& pixels, int c) {
+    Estimate e;
+    e.n = 1e30;
+    for (const Pixel& p : pixels) {
+        e.mean += s.mean.at(p.x, p.y, c);
+        e.var += s.var.at(p.x, p.y, c);
+        e.n = std::min(e.n, s.samples(p.x, p.y));
+    }
+    const double k = double(pixels.size());
+    e.mean /= k;
+    e.var /= k * k;
+    return e;
+}
+
+/// The pixels of [x0, x1) x [y0, y1).
+inline std::vector<Pixel> rect(std::uint32_t x0, std::uint32_t y0, std::uint32_t x1, std::uint32_t y1) {
+    std::vector<Pixel> out;
+    for (std::uint32_t y = y0; y < y1; ++y)
+        for (std::uint32_t x = x0; x < x1; ++x) out.push_back({x, y});
+    return out;
+}
+
+/// z-test of an estimate against an expected value (file comment); counts against zBudget().
+/// With print = true the result is also printed (for the summaries in README "Accuracy").
+/// rareJump: for estimators whose samples rarely (probability << 1 / samples) jump by up to
+/// rareJump from the common value (Russian roulette ending a path that almost always has the same
+/// value), the sample variance misses those events when none happened; the variance of one such
+/// event among the region's samples, (rareJump / N)^2, N = samples in the region, is then added.
+inline ::testing::AssertionResult withinNoise(const Estimate& e, double expected, const std::string& what,
+                                              bool print = false, double rareJump = 0.0, double regionSamples = 1.0) {
+    const double z = zBudget().take();
+    const double slack = std::max(0.0, e.n - 1.0) * std::ldexp(1.0, -24) * std::abs(expected);
+    const double sd = std::sqrt(e.var + (rareJump / regionSamples) * (rareJump / regionSamples));
+    const double err = e.mean - expected;
+    const double zs = sd > 0 ? err / sd : (err == 0 ? 0.0 : INFINITY);
+    if (std::abs(err) > slack) zBudget().maxAbsZ = std::max(zBudget().maxAbsZ, std::abs(zs));
+    std::ostringstream msg;
+    msg << what << ": mean " << e.mean << ", expected " << expected << ", error " << err << " = " << zs
+        << " standard errors (sd " << sd << ", limit " << z << " sd + " << slack << ")";
+    const bool fails = std::abs(err) > z * sd + slack;
+    if (print || fails || (std::abs(err) > slack && std::abs(zs) > 0.8 * z))  // near misses are worth seeing too
+        std::printf("  %s: %.6g (expected %.6g), error %+.2e = %+.2f se, relative se %.2e\n", what.c_str(), e.mean,
+                    expected, err, zs, expected != 0 ? sd / std::abs(expected) : sd);
+    if (!fails) return ::testing::AssertionSuccess() << msg.str();
+    return ::testing::AssertionFailure() << msg.str();
+}
+
+/// A renderer with its scene and BVH kept alive beside it.
+struct SceneRender {
+    Scene scene;
+    FlatBvh bvh;
+    std::unique_ptr<Renderer> renderer;
+};
+
+/// Builds and uploads `scene` for `sampler`. samplesPerDispatch: see RendererOptions.
+inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sampler sampler,
+                                   std::uint32_t samplesPerDispatch = 4) {
+    SceneRender r;
+    r.scene = scene;
+    r.bvh = buildFlatBvh(r.scene);
+    RendererOptions o;
+    o.sampler = sampler;
+    o.samplesPerDispatch = samplesPerDispatch;
+    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
+    return r;
+}
+
+/// Renders `scene` with `sampler` for spp samples and returns the sums; expects no non-finite
+/// sample and no path cut by the loop guard.
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
+                            const std::string& what) {
+    SceneRender r = makeSceneRender(dev, scene, sampler);
+    r.renderer->addSamples(spp);
+    const RenderCounters c = r.renderer->counters();
+    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(sampler);
+    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(sampler);
+    return r.renderer->readSums();
+}
+
+// ---- Closed-form irradiance on a plane, averaged over pixel footprints -------------------------
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Irradiance (per unit radiance L = 1) at x with unit normal n from a uniformly emitting convex
+/// polygon that lies entirely above x's tangent plane: Lambert's formula E = 1/2 |sum_i theta_i
+/// (n . g_i)|, theta_i the angle edge i subtends at x, g_i the unit normal of the plane through x
+/// and that edge (Arvo, "Applications of Irradiance Tensors", SIGGRAPH 1995, eq. 7).
+inline double polygonIrradiance(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& poly) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const glm::dvec3 a = glm::normalize(poly[i] - x), b = glm::normalize(poly[(i + 1) % poly.size()] - x);
+        const glm::dvec3 c = glm::cross(a, b);
+        const double theta = std::atan2(glm::length(c), glm::dot(a, b));
+        sum += theta * glm::dot(glm::normalize(c), n);
+    }
+    return 0.5 * std::abs(sum);
+}
+
+/// Irradiance (L = 1) at x with unit normal n from a sphere (c, R) entirely above x's horizon:
+/// pi (R/d)^2 cos(theta), the sphere acting as a point of intensity pi R^2 at its centre.
+inline double sphereIrradiance(const glm::dvec3& x, const glm::dvec3& n, const glm::dvec3& c, double r) {
+    const glm::dvec3 f = c - x;
+    const double d = glm::length(f);
+    return kPi * (r / d) * (r / d) * glm::dot(f / d, n);
+}
+
+/// Gauss-Legendre nodes and weights on [-0.5, 0.5] (8 points, exact for degree 15).
+inline const std::array<double, 8> kGlX = {-0.4801449282487681, -0.3983332387068134, -0.2627662472838140, -0.0916717321004510,
+                                    0.0916717321004510,  0.2627662472838140,  0.3983332387068134,  0.4801449282487681};
+inline const std::array<double, 8> kGlW = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+                                    0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+
+/// The mean of E over pixel (i, j)'s footprint on the plane z = 0: the kernel aims each sample at
+/// pixel00 + (i + jx) du + (j + jy) dv, jx, jy uniform in [-0.5, 0.5], from the camera origin;
+/// that point is carried along its ray to z = 0 and E is integrated over (jx, jy) by 8x8
+/// Gauss-Legendre quadrature (accurate for an E that is smooth on the scale of a pixel: lights
+/// several pixel footprints away from the plane).
+inline double footprintMean(const gpu::GpuFrame& f, std::uint32_t i, std::uint32_t j, const std::function<double(glm::dvec3)>& E) {
+    const glm::dvec3 o(f.origin), p00(f.pixel00), du(f.pixelDu), dv(f.pixelDv);
+    double sum = 0.0;
+    for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) {
+            const glm::dvec3 target = p00 + (i + kGlX[a]) * du + (j + kGlX[b]) * dv;
+            const glm::dvec3 x = o + (target - o) * (o.z / (o.z - target.z));
+            sum += kGlW[a] * kGlW[b] * E(x);
+        }
+    return sum;
+}
+
+const char* const kChannel[] = {"R", "G", "B"};
+
+/// Every sampler the renderer knows (found by name, so that samplers added later are covered).
+inline std::vector<Sampler> samplersUnderTest() {
+    std::vector<Sampler> out;
+    for (const char* name : {"bsdf", "light", "mixture", "mis", "mis-power", "guided"}) {
+        Sampler s;
+        if (parseSampler(name, s)) out.push_back(s);
+    }
+    return out;
+}
+
+}  // namespace vkp::test

@@ -1,0 +1,315 @@
+// The glTF loader on broken files, each made here from one valid triangle by one change: every
+// case gives one InputError line "<file>: <place>: <message>" naming the part at fault, and no
+// crash (run these under ASan + UBSan: the asan preset).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
+#include "scene/gltf.h"
+#include "scene/scene.h"
+#include "test_paths.h"
+
+namespace {
+
+using namespace vkp;
+using Json = nlohmann::json;
+using Bytes = std::vector<std::uint8_t>;
+
+/// One triangle: POSITION (float3, bytes 0-35), NORMAL (36-71), uint16 indices (72-77), 80 bytes.
+Json baseDoc() {
+    return Json::parse(R"({
+      "asset": {"version": "2.0"},
+      "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}],
+      "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+      "accessors": [
+        {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+        {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+      "bufferViews": [
+        {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+        {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+        {"buffer": 0, "byteOffset": 72, "byteLength": 6}],
+      "buffers": [{"byteLength": 80}]
+    })");
+}
+
+Bytes baseBin() {
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const float nrm[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const std::uint16_t idx[4] = {0, 1, 2, 0};
+    Bytes b(80);
+    std::memcpy(b.data(), pos, 36);
+    std::memcpy(b.data() + 36, nrm, 36);
+    std::memcpy(b.data() + 72, idx, 8);
+    return b;
+}
+
+void setFloat(Bytes& b, std::size_t at, float x) { std::memcpy(b.data() + at, &x, 4); }
+
+void writeFile(const std::filesystem::path& p, const std::string& bytes) {
+    std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+std::string le32(std::uint32_t x) {
+    std::string s(4, '\0');
+    for (int i = 0; i < 4; ++i) s[std::size_t(i)] = char((x >> (8 * i)) & 0xff);
+    return s;
+}
+
+/// The GLB container around a JSON text and a binary chunk.
+std::string glb(std::string json, const Bytes& bin) {
+    while (json.size() % 4) json += ' ';
+    std::string body = le32(std::uint32_t(json.size())) + le32(0x4E4F534Au) + json;
+    if (!bin.empty()) body += le32(std::uint32_t(bin.size())) + le32(0x004E4942u) + std::string(bin.begin(), bin.end());
+    return "glTF" + le32(2) + le32(std::uint32_t(12 + body.size())) + body;
+}
+
+struct Case {
+    std::string name;
+    std::function<void(Json&, Bytes&)> change;
+    std::string fragment;  ///< part of the message after "<file>: "
+    bool binary = false;   ///< .glb instead of .gltf + .bin
+};
+
+/// Write the case's file(s) into the scratch folder; returns the scene file.
+std::filesystem::path writeCase(const Case& c) {
+    const auto dir = test::scratchDir("gltf_errors");
+    Json doc = baseDoc();
+    Bytes bin = baseBin();
+    if (c.binary) {
+        c.change(doc, bin);
+        const auto path = dir / (c.name + ".glb");
+        writeFile(path, glb(doc.dump(), bin));
+        return path;
+    }
+    doc["buffers"][0]["uri"] = c.name + ".bin";
+    c.change(doc, bin);
+    const auto path = dir / (c.name + ".gltf");
+    writeFile(path, doc.dump());
+    writeFile(dir / (c.name + ".bin"), std::string(bin.begin(), bin.end()));
+    return path;
+}
+
+void expectError(const std::filesystem::path& file, const std::string& fragment, const GltfOptions& o = {}) {
+    try {
+        const Scene s = loadSceneGltf(file, o);
+        ADD_FAILURE() << file << ": no error (expected \"" << fragment << "\"), " << s.shapes.size() << " shapes";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.rfind(file.string() + ": ", 0), 0u) << what;
+        EXPECT_NE(what.find(fragment), std::string::npos) << "expected \"" << fragment << "\" in: " << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+}
+
+const std::string kPos = "accessor 0 (POSITION of mesh 0 (\"tri\") primitive 0): ";
+const std::string kIdx = "accessor 2 (indices of mesh 0 (\"tri\") primitive 0): ";
+const std::string kPrim = "mesh 0 (\"tri\") primitive 0: ";
+
+TEST(GltfErrors, TheBaseTriangleLoads) {
+    const Scene s = loadSceneGltf(writeCase({"base", [](Json&, Bytes&) {}, ""}));
+    EXPECT_EQ(s.shapes.size(), 1u);
+    const Scene g = loadSceneGltf(writeCase({"base_glb", [](Json&, Bytes&) {}, "", true}));
+    EXPECT_EQ(g.shapes.size(), 1u);
+}
+
+TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const std::vector<Case> cases = {
+        // Accessors, buffer views, buffers.
+        {"index_out_of_range", [](Json&, Bytes& b) { b[76] = 7; }, kIdx + "index 2 is 7, but POSITION has 3 vertices"},
+        {"accessor_missing", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 9; },
+         "accessor 9 (NORMAL of mesh 0 (\"tri\") primitive 0): does not exist (the file has 3 accessors)"},
+        {"accessor_past_view", [](Json& d, Bytes&) { d["accessors"][0]["byteOffset"] = 4; },
+         kPos + "3 elements of 12 bytes, 12 apart, from offset 4 do not fit bufferView 0 (36 bytes)"},
+        {"view_past_buffer", [](Json& d, Bytes&) { d["bufferViews"][1]["byteOffset"] = 60; },
+         "bufferView 1 (offset 60, length 36) is outside buffer 0 (80 bytes)"},
+        {"count_absurd", [](Json& d, Bytes&) { d["accessors"][0]["count"] = 1000000000; },
+         "mesh 0 (\"tri\") primitive 0 of node 0: the scene would have more than 67108864 vertices (vkpath's limit)"},
+        {"count_absurd_normal", [](Json& d, Bytes&) { d["accessors"][1]["count"] = 1000000000; },
+         "accessor 1 (NORMAL of mesh 0 (\"tri\") primitive 0): count 1000000000 is larger than vkpath's limit"},
+        {"count_too_big", [](Json& d, Bytes&) { d["accessors"][0]["count"] = 1000; }, kPos + "1000 elements"},
+        {"count_zero", [](Json& d, Bytes&) { d["accessors"][0]["count"] = 0; }, kPos + "count must be >= 1"},
+        {"stride_too_small", [](Json& d, Bytes&) { d["bufferViews"][0]["byteStride"] = 8; },
+         kPos + "bufferView 0 byteStride 8 is not in [12, 252]"},
+        {"index_type_float", [](Json& d, Bytes&) { d["accessors"][2]["componentType"] = 5126; },
+         kIdx + "is SCALAR of float, expected SCALAR of unsigned byte, unsigned short, unsigned int"},
+        {"position_vec2", [](Json& d, Bytes&) { d["accessors"][0]["type"] = "VEC2"; }, kPos + "is VEC2 of float, expected VEC3"},
+        {"normal_count", [](Json& d, Bytes&) { d["accessors"][1]["count"] = 2; },
+         "accessor 1 (NORMAL of mesh 0 (\"tri\") primitive 0): has 2 elements but POSITION has 3"},
+        {"sparse_index_out_of_range",
+         [](Json& d, Bytes& b) {
+             d["bufferViews"].push_back(Json::parse(R"({"buffer": 0, "byteOffset": 78, "byteLength": 2})"));
+             d["accessors"][0]["sparse"] = Json::parse(
+                 R"({"count": 1, "indices": {"bufferView": 3, "componentType": 5123}, "values": {"bufferView": 0}})");
+             b[78] = 5;
+         },
+         kPos + "sparse index 0 is 5 (the accessor has 3 elements)"},
+        {"sparse_not_increasing",  // uint8 indices at bytes 74, 75: 1, 0
+         [](Json& d, Bytes&) {
+             d["accessors"][0]["sparse"] = Json::parse(
+                 R"({"count": 2, "indices": {"bufferView": 2, "componentType": 5121, "byteOffset": 2}, "values": {"bufferView": 0}})");
+         },
+         kPos + "sparse index 1 is 0 (indices must increase strictly)"},
+        // Values.
+        {"nan_position", [nan](Json&, Bytes& b) { setFloat(b, 16, nan); }, kPos + "element 1 is not finite"},
+        {"inf_normal", [inf](Json&, Bytes& b) { setFloat(b, 36 + 24, inf); },
+         "accessor 1 (NORMAL of mesh 0 (\"tri\") primitive 0): element 2 is not finite"},
+        {"overflow_by_node", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {1e38, 1e38, 1e38}; d["nodes"][0]["translation"] = {3e38, 0, 0}; },
+         kPos + "element 1 is outside the range of 32-bit floats once placed by its node"},
+        // Meshes, nodes, scenes.
+        {"mode_lines", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["mode"] = 1; },
+         kPrim + "mode 1 (LINES) is not supported"},
+        {"not_whole_triangles", [](Json& d, Bytes&) { d["accessors"][2]["count"] = 2; }, kPrim + "2 indices do not make whole triangles"},
+        {"no_position", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
+         kPrim + "has no POSITION attribute"},
+        {"node_cycle", [](Json& d, Bytes&) { d["nodes"][0]["children"] = {0}; }, "node 0: is reached twice"},
+        {"node_missing_child", [](Json& d, Bytes&) { d["nodes"][0]["children"] = {5}; }, "node 0/children: node 5 does not exist"},
+        {"node_missing_mesh", [](Json& d, Bytes&) { d["nodes"][0]["mesh"] = 3; }, "node 0/mesh: mesh 3 does not exist"},
+        {"node_bad_rotation", [](Json& d, Bytes&) { d["nodes"][0]["rotation"] = {0, 0, 0, 0}; }, "node 0/rotation: must be a unit quaternion"},
+        {"scene_missing", [](Json& d, Bytes&) { d["scene"] = 4; }, "scene: scene 4 does not exist (the file has 1 scene)"},
+        {"too_many_triangles",
+         [](Json& d, Bytes& b) {
+             // 200,000 triangles (600,000 uint8 indices, all 0) on 3 vertices, instanced by 400 nodes: 80 million.
+             b.resize(80 + 600000, 0);
+             d["buffers"][0]["byteLength"] = b.size();
+             d["bufferViews"].push_back(Json::parse(R"({"buffer": 0, "byteOffset": 80, "byteLength": 600000})"));
+             d["accessors"].push_back(Json::parse(R"({"bufferView": 3, "componentType": 5121, "count": 600000, "type": "SCALAR"})"));
+             d["meshes"].push_back(Json::parse(R"({"primitives": [{"attributes": {"POSITION": 0}, "indices": 3}]})"));
+             for (int i = 0; i < 400; ++i) {
+                 d["nodes"].push_back(Json{{"mesh", 1}});
+                 d["scenes"][0]["nodes"].push_back(i + 1);
+             }
+         },
+         "more than 67108864 triangles (vkpath's limit)"},
+        // Materials and textures.
+        {"material_missing", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["material"] = 2; }, "material 2: does not exist"},
+        {"base_color_range",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [2, 0, 0, 1]}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/pbrMetallicRoughness/baseColorFactor/0: must be in [0, 1] (got 2)"},
+        {"texture_missing",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 5}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0/pbrMetallicRoughness/baseColorTexture/index: texture 5 does not exist"},
+        {"image_file_missing",
+         [](Json& d, Bytes&) {
+             d["images"] = Json::parse(R"([{"uri": "missing.png"}])");
+             d["textures"] = Json::parse(R"([{"source": 0}])");
+         },
+         "uri \"missing.png\": cannot read"},
+        {"image_corrupt",
+         [](Json& d, Bytes&) { d["images"] = Json::parse(R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAAA"}])"); },
+         "image 0: cannot decode"},
+        {"wrap_mode",
+         [](Json& d, Bytes&) {
+             d["images"] = Json::parse(R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAAC0lEQVR42mP4DwQACfsD/Wj6HMwAAAAASUVORK5CYII="}])");
+             d["samplers"] = Json::parse(R"([{"wrapS": 1234}])");
+             d["textures"] = Json::parse(R"([{"source": 0, "sampler": 0}])");
+             d["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "sampler 0/wrapS: 1234 is not a wrap mode"},
+        {"ior_range",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"extensions": {"KHR_materials_ior": {"ior": 0.5}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0/extensions/KHR_materials_ior/ior: must be 0 or >= 1"},
+        {"alpha_cutoff_overflow",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"alphaMode": "MASK", "alphaCutoff": 1e300}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0/alphaCutoff: must be finite as a 32-bit float (got 1e+300)"},
+        {"too_large_to_frame", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {3e38, 3e38, 3e38}; },
+         "cameras: the file has no camera and its scene is too large to frame in 32-bit floats"},
+        // Document level.
+        {"required_extension", [](Json& d, Bytes&) { d["extensionsUsed"] = {"KHR_draco_mesh_compression"}; d["extensionsRequired"] = {"KHR_draco_mesh_compression"}; },
+         "extensionsRequired: extension KHR_draco_mesh_compression is required by the file but vkpath does not implement it"},
+        {"version_1", [](Json& d, Bytes&) { d["asset"]["version"] = "1.0"; }, "asset/version: \"1.0\": vkpath reads glTF 2.x"},
+        {"no_asset", [](Json& d, Bytes&) { d.erase("asset"); }, "(document): invalid glTF"},
+        {"deep_nesting",
+         [](Json& d, Bytes&) {
+             Json deep = Json::array();
+             for (int i = 0; i < 300; ++i) deep = Json::array({deep});
+             d["extras"] = deep;
+         },
+         "(document): JSON nested deeper than 256 levels"},
+        {"bin_missing", [](Json& d, Bytes&) { d["buffers"][0]["uri"] = "nowhere.bin"; }, "uri \"nowhere.bin\": cannot read"},
+        {"bin_short", [](Json& d, Bytes&) { d["buffers"][0]["byteLength"] = 800; }, "(document): invalid glTF: File size mismatch"},
+        // GLB.
+        {"glb_index_out_of_range", [](Json&, Bytes& b) { b[74] = 9; }, kIdx + "index 1 is 9", true},
+        {"glb_image_view_outside",
+         [](Json& d, Bytes&) {
+             d["bufferViews"].push_back(Json::parse(R"({"buffer": 0, "byteOffset": 40, "byteLength": 1000})"));
+             d["images"] = Json::parse(R"([{"bufferView": 3, "mimeType": "image/png"}])");
+         },
+         "image 0: bufferView 3 (bytes 40 + 1000) is outside buffer 0 (80 bytes)", true},
+        {"glb_buffer_longer_than_chunk", [](Json& d, Bytes&) { d["buffers"][0]["byteLength"] = 84; },
+         "(document): invalid glTF: Invalid `byteLength'", true},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        expectError(writeCase(c), c.fragment);
+    }
+}
+
+TEST(GltfErrors, BrokenContainersAndFiles) {
+    const auto dir = test::scratchDir("gltf_errors");
+    const std::string good = glb(baseDoc().dump(), baseBin());
+    auto withBytes = [&](const std::string& name, std::string bytes) {
+        const auto p = dir / name;
+        writeFile(p, bytes);
+        return p;
+    };
+    expectError(dir / "does-not-exist.gltf", "cannot read: no such file");
+    expectError(withBytes("empty.gltf", ""), "(document): invalid glTF");
+    std::string text = baseDoc().dump();
+    expectError(withBytes("truncated.gltf", text.substr(0, text.size() / 2)), "(document): invalid JSON: [json.exception.parse_error");
+    expectError(withBytes("truncated.glb", good.substr(0, good.size() - 10)), "GLB header: truncated: the header gives");
+    expectError(withBytes("header-only.glb", good.substr(0, 16)), "GLB header: truncated: 16 bytes");
+    std::string v1 = good;
+    v1[4] = 1;
+    expectError(withBytes("version1.glb", v1), "GLB header: container version 1");
+    std::string longJson = good;
+    longJson.replace(12, 4, le32(0x7ffffff0u));
+    expectError(withBytes("json-chunk.glb", longJson), "GLB chunk 0: JSON chunk length 2147483632 does not fit");
+    std::string longBin = good;
+    std::uint32_t jsonLength = 0;
+    std::memcpy(&jsonLength, good.data() + 12, 4);
+    const std::size_t binHeader = 20 + jsonLength;
+    longBin.replace(binHeader, 4, le32(88));  // 8 bytes more than there are
+    expectError(withBytes("bin-chunk.glb", longBin), "GLB chunk 1: BIN chunk length 88 runs past the end of the file");
+    std::string notBin = good;
+    notBin.replace(binHeader + 4, 4, "XXXX");
+    expectError(withBytes("bin-type.glb", notBin), "GLB chunk 1: the second chunk must be BIN");
+}
+
+TEST(GltfErrors, CameraChoices) {
+    const auto file = writeCase({"cameras", [](Json& d, Bytes&) {
+                                     d["cameras"] = Json::parse(R"([{"type": "perspective", "perspective": {"yfov": 0, "znear": 1}}])");
+                                     d["nodes"].push_back(Json{{"camera", 0}});
+                                     d["scenes"][0]["nodes"].push_back(1);
+                                 },
+                                 ""});
+    expectError(file, "camera 0/perspective/yfov: must be in (0, pi) radians (got 0");
+    GltfOptions o;
+    o.scene = 3;
+    expectError(file, "--gltf-scene 3: scene 3 does not exist", o);
+}
+
+}  // namespace

@@ -1,0 +1,203 @@
+// glTF materials, textures and emissive lights: scenes/gltf/materials.gltf and emissive.glb
+// (tools/gen_gltf_scenes.py), and what the current kernel renders for them (kernelMaterial).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/gltf.h"
+#include "scene/scene.h"
+#include "test_paths.h"
+
+namespace {
+
+using namespace vkp;
+
+std::filesystem::path gltfScene(const std::string& name) { return test::scenesDir() / "gltf" / name; }
+
+/// Pixel (x, y) of an image as RGBA.
+glm::uvec4 pixel(const TextureImage& img, std::uint32_t x, std::uint32_t y) {
+    const std::size_t i = 4 * (std::size_t(y) * img.width + x);
+    return {img.rgba8.at(i), img.rgba8.at(i + 1), img.rgba8.at(i + 2), img.rgba8.at(i + 3)};
+}
+
+class Materials : public ::testing::Test {
+protected:
+    void SetUp() override { s_ = loadSceneGltf(gltfScene("materials.gltf")); }
+    /// Scene material of glTF material i (appended in order of first use, which is file order here).
+    const Material& mat(std::size_t i) const { return s_.materials.at(i); }
+    Scene s_;
+};
+
+TEST_F(Materials, EveryExtensionIsReadWithoutWarnings) {
+    EXPECT_TRUE(s_.warnings.empty()) << s_.warnings.front();
+    ASSERT_EQ(s_.materials.size(), 9u);  // 8 of the file + the default material
+    for (const Material& m : s_.materials) EXPECT_EQ(m.type, MaterialType::Pbr);
+}
+
+TEST_F(Materials, Factors) {
+    const Material& m = mat(0);
+    EXPECT_EQ(m.name, "factors");
+    EXPECT_EQ(m.pbr.baseColor, glm::vec4(0.8f, 0.2f, 0.1f, 1.0f));
+    EXPECT_EQ(m.albedo, glm::vec3(0.8f, 0.2f, 0.1f));
+    EXPECT_EQ(m.pbr.metallic, 0.25f);
+    EXPECT_EQ(m.pbr.roughness, 0.6f);
+    EXPECT_TRUE(m.twoSided);
+    EXPECT_FALSE(m.emits());
+    EXPECT_EQ(m.ior, 1.5f);
+    EXPECT_EQ(m.pbr.specular, 1.0f);
+    EXPECT_EQ(m.pbr.alphaMode, AlphaMode::Opaque);
+    EXPECT_FALSE(m.pbr.baseColorTexture.valid());
+    const Material k = kernelMaterial(m);
+    EXPECT_EQ(k.type, MaterialType::Lambertian);
+    EXPECT_EQ(k.albedo, glm::vec3(0.8f, 0.2f, 0.1f));
+}
+
+TEST_F(Materials, TexturesSamplersAndTextureTransform) {
+    const Material& m = mat(1);
+    ASSERT_TRUE(m.pbr.baseColorTexture.valid());
+    ASSERT_TRUE(m.pbr.metallicRoughnessTexture.valid());
+    ASSERT_TRUE(m.pbr.normalTexture.valid());
+    // Two glTF textures; each is used in one colour space only: two Scene textures, two images.
+    ASSERT_EQ(s_.textures.size(), 2u);
+    ASSERT_EQ(s_.images.size(), 2u);
+    const Texture& base = s_.textures.at(std::size_t(m.pbr.baseColorTexture.texture));
+    EXPECT_TRUE(base.srgb);
+    EXPECT_EQ(base.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(base.wrapT, TextureWrap::MirroredRepeat);
+    EXPECT_TRUE(base.nearest);
+    const TextureImage& img = s_.images.at(base.image);  // the data-URI PNG
+    ASSERT_EQ(img.width, 2u);
+    ASSERT_EQ(img.height, 2u);
+    ASSERT_EQ(img.rgba8.size(), 16u);
+    EXPECT_EQ(pixel(img, 0, 0), glm::uvec4(255, 0, 0, 255));
+    EXPECT_EQ(pixel(img, 1, 0), glm::uvec4(0, 255, 0, 255));
+    EXPECT_EQ(pixel(img, 0, 1), glm::uvec4(0, 0, 255, 255));
+    EXPECT_EQ(pixel(img, 1, 1), glm::uvec4(255, 255, 255, 128));
+
+    EXPECT_EQ(m.pbr.metallicRoughnessTexture.texture, m.pbr.normalTexture.texture);  // same texture, both linear
+    const Texture& data = s_.textures.at(std::size_t(m.pbr.normalTexture.texture));
+    EXPECT_FALSE(data.srgb);
+    EXPECT_EQ(data.wrapS, TextureWrap::Repeat);  // no sampler: repeat, bilinear
+    EXPECT_FALSE(data.nearest);
+    const TextureImage& checker = s_.images.at(data.image);  // textures/checker.png
+    ASSERT_EQ(checker.width, 4u);
+    EXPECT_EQ(pixel(checker, 0, 0), glm::uvec4(0, 128, 255, 255));
+    EXPECT_EQ(pixel(checker, 1, 0), glm::uvec4(255, 64, 0, 255));
+
+    const TextureRef& n = m.pbr.normalTexture;
+    EXPECT_EQ(m.pbr.normalScale, 0.5f);
+    EXPECT_EQ(n.offset, glm::vec2(0.5f, 0.0f));
+    EXPECT_EQ(n.rotation, 0.3f);
+    EXPECT_EQ(n.scale, glm::vec2(2.0f));
+    // KHR_texture_transform: uv' = T R S uv with R = [cos sin; -sin cos].
+    const glm::vec2 t = n.transform({1.0f, 0.0f});
+    EXPECT_NEAR(t.x, 0.5f + 2.0f * std::cos(0.3f), 1e-6f);
+    EXPECT_NEAR(t.y, -2.0f * std::sin(0.3f), 1e-6f);
+    EXPECT_EQ(m.pbr.baseColorTexture.transform({0.25f, 0.75f}), glm::vec2(0.25f, 0.75f));  // identity
+}
+
+TEST_F(Materials, TangentsAreGeneratedForANormalMapOrTakenFromTheFile) {
+    // Node "textured" (material 1, normal map, no TANGENT): u grows along +x, v along -y.
+    const Shape& gen = s_.shapes.at(2);
+    const TriangleVertices& tg = s_.triangleVertices.at(gen.attributes);
+    EXPECT_EQ(tg.flags, TriangleVertices::kHasNormal | TriangleVertices::kHasUv | TriangleVertices::kHasTangent);
+    for (std::uint32_t v : tg.v) {
+        const glm::vec4 t = s_.vertices.tangent.at(v);
+        EXPECT_NEAR(t.x, 1.0f, 1e-6f);
+        EXPECT_NEAR(t.y, 0.0f, 1e-6f);
+        EXPECT_NEAR(t.z, 0.0f, 1e-6f);
+        EXPECT_EQ(t.w, -1.0f);  // bitangent = w cross(n, t) = -y: the direction of growing v
+    }
+    // Node "tangents" (the last one) has TANGENT (1,0,0,-1) in the file.
+    const Shape& given = s_.shapes.back();
+    const TriangleVertices& tt = s_.triangleVertices.at(given.attributes);
+    EXPECT_EQ(tt.flags & TriangleVertices::kHasTangent, TriangleVertices::kHasTangent);
+    for (std::uint32_t v : tt.v) EXPECT_EQ(s_.vertices.tangent.at(v), glm::vec4(1, 0, 0, -1));
+    // A primitive without a normal map has no tangents (zeros keep the arrays aligned).
+    const TriangleVertices& plain = s_.triangleVertices.at(s_.shapes.at(0).attributes);
+    EXPECT_EQ(plain.flags & TriangleVertices::kHasTangent, 0u);
+    EXPECT_EQ(s_.vertices.tangent.size(), s_.vertices.normal.size());
+    EXPECT_EQ(s_.vertices.uv.size(), s_.vertices.normal.size());
+}
+
+TEST_F(Materials, EmissionWithStrengthIsALightOnItsFrontOnlyUnlessDoubleSided) {
+    const Material& lamp = mat(2);
+    EXPECT_EQ(lamp.emit, glm::vec3(4.0f, 2.0f, 1.0f));  // emissiveFactor x emissiveStrength 4
+    EXPECT_FALSE(lamp.twoSided);
+    ASSERT_TRUE(lamp.pbr.emissiveTexture.valid());
+    EXPECT_TRUE(s_.textures.at(std::size_t(lamp.pbr.emissiveTexture.texture)).srgb);
+    const Material& lamp2 = mat(7);
+    EXPECT_EQ(lamp2.emit, glm::vec3(1.0f));
+    EXPECT_TRUE(lamp2.twoSided);
+    // Lights: the two triangles of each lamp quad, in order.
+    ASSERT_EQ(s_.lights.size(), 4u);
+    for (std::uint32_t l : s_.lights) {
+        EXPECT_TRUE(s_.shapes[l].sampled);
+        EXPECT_TRUE(s_.materials[s_.shapes[l].material].emits());
+    }
+    std::size_t sampled = 0;
+    for (const Shape& sh : s_.shapes) sampled += sh.sampled;
+    EXPECT_EQ(sampled, 4u);
+    const Material k = kernelMaterial(lamp), k2 = kernelMaterial(lamp2);
+    EXPECT_EQ(k.type, MaterialType::DiffuseLight);
+    EXPECT_FALSE(k.twoSided);
+    EXPECT_EQ(k.emit, lamp.emit);
+    EXPECT_EQ(k2.type, MaterialType::DiffuseLight);
+    EXPECT_TRUE(k2.twoSided);
+}
+
+TEST_F(Materials, TransmissionIorSpecularAlphaAndDefault) {
+    const Material& glass = mat(3);
+    EXPECT_EQ(glass.pbr.transmission, 1.0f);
+    EXPECT_EQ(glass.ior, 1.33f);
+    EXPECT_EQ(glass.pbr.roughness, 0.0f);
+    const Material kg = kernelMaterial(glass);
+    EXPECT_EQ(kg.type, MaterialType::Dielectric);
+    EXPECT_EQ(kg.ior, 1.33f);
+    EXPECT_TRUE(kg.fresnelExact);
+
+    const Material& coated = mat(4);
+    EXPECT_EQ(coated.pbr.specular, 0.0f);
+    EXPECT_EQ(coated.pbr.specularColor, glm::vec3(1.0f, 0.9f, 0.8f));
+    ASSERT_TRUE(coated.pbr.specularTexture.valid());
+    EXPECT_FALSE(s_.textures.at(std::size_t(coated.pbr.specularTexture.texture)).srgb);
+    EXPECT_FALSE(coated.pbr.specularColorTexture.valid());
+
+    EXPECT_EQ(mat(5).pbr.alphaMode, AlphaMode::Mask);
+    EXPECT_EQ(mat(5).pbr.alphaCutoff, 0.3f);
+    EXPECT_EQ(mat(6).pbr.alphaMode, AlphaMode::Blend);
+    EXPECT_EQ(mat(6).pbr.baseColor.w, 0.5f);
+
+    const Material& def = mat(8);  // the primitive without a material
+    EXPECT_EQ(def.pbr.metallic, 1.0f);
+    EXPECT_EQ(def.pbr.roughness, 1.0f);
+    const Material kd = kernelMaterial(def);
+    EXPECT_EQ(kd.type, MaterialType::Metal);
+    EXPECT_EQ(kd.albedo, glm::vec3(1.0f));
+    EXPECT_EQ(kd.fuzz, 1.0f);
+}
+
+TEST(GltfEmissive, GlbWithEmbeddedImageAndSingleAndDoubleSidedLights) {
+    const Scene s = loadSceneGltf(gltfScene("emissive.glb"));
+    EXPECT_TRUE(s.warnings.empty());
+    ASSERT_EQ(s.shapes.size(), 5u);  // floor 2, panel 2, sign 1
+    ASSERT_EQ(s.lights.size(), 3u);
+    EXPECT_EQ(s.lights, (std::vector<std::uint32_t>{2, 3, 4}));
+    const Material& panel = s.materials.at(s.shapes[2].material);
+    EXPECT_EQ(panel.emit, glm::vec3(8.0f));
+    EXPECT_FALSE(panel.twoSided);
+    const glm::vec3 n = glm::cross(s.shapes[2].p1 - s.shapes[2].p0, s.shapes[2].p2 - s.shapes[2].p0);
+    EXPECT_LT(n.y, 0.0f);  // emits downwards
+    EXPECT_TRUE(s.materials.at(s.shapes[4].material).twoSided);
+    // The floor's texture is a PNG inside the GLB's binary chunk.
+    const Material& floor = s.materials.at(s.shapes[0].material);
+    ASSERT_TRUE(floor.pbr.baseColorTexture.valid());
+    const TextureImage& img = s.images.at(s.textures.at(std::size_t(floor.pbr.baseColorTexture.texture)).image);
+    ASSERT_EQ(img.width, 4u);
+    EXPECT_EQ(pixel(img, 0, 0), glm::uvec4(0, 128, 255, 255));
+    EXPECT_EQ(pixel(img, 3, 0), glm::uvec4(255, 64, 0, 255));
+    EXPECT_EQ(s.camera.width, 512u);  // aspectRatio 1.5
+    EXPECT_EQ(s.camera.height, 341u);
+}
+
+}  // namespace

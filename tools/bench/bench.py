@@ -1,0 +1,290 @@
+#!/usr/bin/python3
+"""vkpath's benchmark suite: run time against error (README "Benchmarks").
+
+For each scene (cornell-book3, cornell-classic, spheres-book1 and a generated dense-mesh scene) it
+  1. makes or reuses a cached reference (references.py) and states its spp and noise floor;
+  2. warms Mesa's shader cache for every pipeline it will time, then measures the time to first
+     pixel with a fresh, empty cache (cold) and again with the same cache (warm);
+  3. renders one time-limited run per sampler with --reference/--error-log (rows at 1, 2, 4, ... spp):
+     the time-versus-error curve, the samples/s and rays/s, and the time to reach each relMSE threshold;
+  4. compares LP_NUM_THREADS=1 with 2, and --variant auto with --variant full (steady samples/s);
+and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
+
+Usage: bench.py [--quick] --vkpath BUILD/host/vkpath [--out DIR] [--cache DIR] [--scenes a,b]
+                [--refresh-references] [--ref-budget S] [--curve-seconds S]
+Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
+python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
+"""
+import argparse
+import datetime
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+try:
+    import numpy  # noqa: F401  (pfm.py and metrics.py need it)
+    import matplotlib  # noqa: F401
+except ImportError as e:
+    print("bench: %s: install python3-numpy and python3-matplotlib (tools/deps.sh --bench)" % e, file=sys.stderr)
+    sys.exit(77)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import metrics  # noqa: E402
+import references  # noqa: E402
+import report  # noqa: E402
+import vkrun  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+THRESHOLDS = (1e-2, 1e-3)
+LIMITED_FRACTION = 0.2  # a point whose reference floor is above 20 % of its error is reference-limited
+BIG_SPP = 1 << 24       # runs are limited by --time
+
+# name, scene file (None: generated), full size, quick size
+SCENES = [
+    ("cornell-book3", "scenes/cornell-book3.json", (256, 256), (64, 64)),
+    ("cornell-classic", "scenes/cornell-classic.json", (256, 256), (64, 64)),
+    ("spheres-book1", "scenes/spheres-book1.json", (320, 180), (96, 54)),
+    ("dense-mesh", None, (256, 256), (64, 64)),
+]
+MODES = {
+    # curve: seconds of rendering per sampler; scaling: per thread/variant run; ref_budget: seconds
+    # for one scene's reference; mesh: the dense-mesh grid (2 * nu * (nv - 1) triangles).
+    "full": dict(curve=60.0, scaling=20.0, ref_budget=2700.0, pilot_spp=16, mesh=(1024, 512), load_timeout=900),
+    "quick": dict(curve=6.0, scaling=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64), load_timeout=120),
+}
+
+
+def log(msg):
+    print(msg, flush=True)
+
+
+def load_average():
+    try:
+        return open("/proc/loadavg").read().split()[0]
+    except OSError:
+        return "?"
+
+
+def git_describe():
+    try:
+        head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(ROOT), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True).stdout.strip()
+        return head + ("+changes" if dirty else "") if head else "?"
+    except OSError:
+        return "?"
+
+
+def scene_file(name, path, cfg, size, cache):
+    if path is not None:
+        return ROOT / path
+    nu, nv = cfg["mesh"]
+    out = pathlib.Path(cache) / "scenes" / ("dense-mesh-%dx%d-%dx%d.json" % (nu, nv, size[0], size[1]))
+    if not out.exists():
+        out.parent.mkdir(parents=True, exist_ok=True)
+        subprocess.run([sys.executable, str(ROOT / "tools/bench/gen_dense_mesh.py"), str(out), "--nu", str(nu),
+                        "--nv", str(nv), "--width", str(size[0]), "--height", str(size[1])], check=True)
+    return out
+
+
+def crossings(rows, floor_rel, t_start):
+    """Threshold -> {"seconds", "how"} from reliable rows (measured or extrapolated ~1/t)."""
+    good = [(r["seconds"], r["relmse"]) for r in rows if not r["ref_limited"]]
+    out = {}
+    for thr in THRESHOLDS:
+        # A threshold below 5x the floor cannot be measured (its points are reference-limited), only
+        # extrapolated from the reliable points.
+        t = metrics.interpolate_crossing(good, thr) if floor_rel <= LIMITED_FRACTION * thr else None
+        if t is not None:
+            out[str(thr)] = {"seconds": t, "how": "measured"}
+        elif good:
+            t_last, e_last = good[-1]
+            out[str(thr)] = {"seconds": metrics.extrapolate_crossing(t_last, e_last - floor_rel, t_start, thr),
+                             "how": "extrapolated"}
+        else:
+            out[str(thr)] = {"seconds": None, "how": "no reliable point"}
+    return out
+
+
+def steady(st):
+    return st["samples_per_second_steady"] or st["samples_per_second"]
+
+
+def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
+    W, H = size
+    res = {"name": name, "size": "%dx%d" % (W, H)}
+    try:
+        info, load_s = vk.info(scene, timeout=cfg["load_timeout"])
+    except subprocess.TimeoutExpired:
+        raise vkrun.VkpathError("`vkpath info` did not load the scene within %d s" % cfg["load_timeout"])
+    res["primitives"] = next((l.split()[1] for l in info.splitlines() if l.startswith("primitives")), "?")
+    res["load_seconds"] = load_s
+    log("  %s primitives, `vkpath info` in %.2f s" % (res["primitives"], load_s))
+    wh = ["--width", W, "--height", H]
+    ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
+                                      args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
+                                      dict(env, LP_NUM_THREADS=args.ref_threads),
+                                      args.refresh_references)
+    res["reference"] = {k: ref[k] for k in ("spp", "sampler", "floor_relmse", "floor_rmse", "floor_mse", "cached")}
+    if args.references_only:
+        return res, {}
+    runs = os.path.join(workdir, name)
+    # Warm the shared cache for every pipeline timed below, then cold and warm time to first pixel.
+    for s in vk.samplers:
+        vk.render(scene, runs, "warmup-" + s, wh + ["--sampler", s, "--spp", 1, "-o", "warmup.pfm"], env)
+    vk.render(scene, runs, "warmup-full", wh + ["--variant", "full", "--spp", 1, "-o", "warmup.pfm"], env)
+    cold_dir = os.path.join(runs, "cold-shader-cache")
+    shutil.rmtree(cold_dir, ignore_errors=True)
+    os.makedirs(cold_dir)
+    cold_env = dict(env, MESA_SHADER_CACHE_DIR=cold_dir)
+    cold = vk.render(scene, runs, "ttfp-cold", wh + ["--spp", 1, "-o", "ttfp.pfm"], cold_env)
+    warm = vk.render(scene, runs, "ttfp-warm", wh + ["--spp", 1, "-o", "ttfp.pfm"], cold_env)
+    res["ttfp"] = {"cold": cold["seconds_to_first_sample"], "cold_jit": cold["seconds_first_batch"],
+                   "warm": warm["seconds_to_first_sample"], "warm_jit": warm["seconds_first_batch"]}
+    startup = warm["seconds_to_first_sample"]
+    # Curves: one run per sampler; --time counts from process start, so the start-up is added.
+    curve_time = (args.curve_seconds or cfg["curve"]) + startup
+    curves, samplers, rows_total, ck_seconds, wall = {}, {}, 0, 0.0, 0.0
+    for s in vk.samplers:
+        logf = os.path.join(runs, "curve-%s.csv" % s)
+        st = vk.render(scene, runs, "curve-" + s, wh + ["--sampler", s, "--spp", BIG_SPP, "--time", "%.3f" % curve_time,
+                                                        "--reference", ref["path"], "--error-log", logf,
+                                                        "-o", "curve-%s.pfm" % s], env)
+        rows = vkrun.read_error_log(logf)
+        for r in rows:
+            r["ref_limited"] = ref["floor_relmse"] > LIMITED_FRACTION * r["relmse"]
+        curves[s] = rows
+        rows_total += st["checkpoints"]
+        ck_seconds += st["seconds_checkpoints"]
+        wall += st["seconds_total"]
+        samplers[s] = {"samples_per_second": steady(st), "rays_per_second": st["rays_per_second_steady"],
+                       "spp": st["spp"], "seconds": st["seconds_total"], "relmse": rows[-1]["relmse"],
+                       "rmse": rows[-1]["rmse"], "crossings": crossings(rows, ref["floor_relmse"], startup)}
+        for bad in ("nonfinite_samples", "loop_guard_paths"):
+            if st[bad]:
+                failures.append("%s/%s: %d %s" % (name, s, st[bad], bad))
+        # An unbiased estimator's relMSE falls ~1/spp: over >= 64x the spp it must fall at least 4x.
+        first, last = rows[0], rows[-1]
+        if last["spp"] >= 64 * first["spp"] and not last["relmse"] < first["relmse"] / 4:
+            failures.append("%s/%s: relMSE %.3g at %d spp, %.3g at %d spp: not converging" %
+                            (name, s, first["relmse"], first["spp"], last["relmse"], last["spp"]))
+    res["samplers"] = samplers
+    res["overhead"] = {"rows": rows_total, "seconds": ck_seconds, "wall": wall}
+    # Scaling: threads and variant, default sampler, same time each.
+    t = "%.3f" % ((args.scaling_seconds or cfg["scaling"]) + startup)
+    base = wh + ["--spp", BIG_SPP, "--time", t, "-o", "scaling.pfm"]
+    one = vk.render(scene, runs, "threads-1", base, dict(env, LP_NUM_THREADS=1))
+    two = vk.render(scene, runs, "threads-2", base, dict(env, LP_NUM_THREADS=2))
+    full = vk.render(scene, runs, "variant-full", base + ["--variant", "full"], dict(env, LP_NUM_THREADS=2))
+    res["scaling"] = {"threads_1": steady(one), "threads_2": steady(two), "threads_ratio": steady(two) / steady(one),
+                      "full": steady(full), "variant_ratio": steady(two) / steady(full),
+                      "auto_first_batch": two["seconds_first_batch"], "full_first_batch": full["seconds_first_batch"]}
+    report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
+    return res, curves
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="small sizes and short runs (a few minutes)")
+    ap.add_argument("--vkpath", default=str(ROOT / "build/release/host/vkpath"), help="the vkpath binary")
+    ap.add_argument("--out", help="results folder (default: build/bench-results/<mode>-<date> in the repository)")
+    ap.add_argument("--cache", default=str(ROOT / "build/bench-cache"),
+                    help="references, generated scenes and the warm Mesa shader cache")
+    ap.add_argument("--scenes", help="comma-separated subset of: " + ", ".join(s[0] for s in SCENES))
+    ap.add_argument("--refresh-references", action="store_true", help="render the references again")
+    ap.add_argument("--ref-threads", type=int, help="LP_NUM_THREADS for the reference renders (default: unset)")
+    ap.add_argument("--references-only", action="store_true",
+                    help="only make (or check) the cached references, then stop: no timing, no report")
+    ap.add_argument("--ref-budget", type=float, help="seconds allowed for one scene's reference")
+    ap.add_argument("--max-floor", type=float, default=0.1 * max(THRESHOLDS),
+                    help="refuse a reference whose relMSE floor is above this (default %(default)g)")
+    ap.add_argument("--curve-seconds", type=float, help="seconds of rendering per sampler curve")
+    ap.add_argument("--mesh", help="the dense-mesh grid NUxNV (2 * NU * (NV - 1) triangles; default %s full, %s quick)"
+                    % tuple("%dx%d" % MODES[m]["mesh"] for m in ("full", "quick")))
+    ap.add_argument("--scaling-seconds", type=float, help="seconds of rendering per thread/variant run")
+    args = ap.parse_args()
+    mode = "quick" if args.quick else "full"
+    cfg = dict(MODES[mode])
+    if args.mesh:
+        try:
+            cfg["mesh"] = tuple(int(v) for v in args.mesh.lower().split("x"))
+            assert len(cfg["mesh"]) == 2 and min(cfg["mesh"]) >= 3
+        except (ValueError, AssertionError):
+            ap.error("--mesh wants NUxNV with NU, NV >= 3, got %r" % args.mesh)
+    stamp = datetime.datetime.now().strftime("%Y%m%d-%H%M%S")
+    args.out = os.path.abspath(args.out or ROOT / "build" / "bench-results" / ("%s-%s" % (mode, stamp)))
+    args.cache = os.path.abspath(args.cache)
+    os.makedirs(args.out, exist_ok=True)
+    os.makedirs(args.cache, exist_ok=True)
+    wanted = set(args.scenes.split(",")) if args.scenes else None
+    unknown = (wanted or set()) - {s[0] for s in SCENES}
+    if unknown:
+        ap.error("unknown scene(s): " + ", ".join(sorted(unknown)))
+
+    t0 = time.monotonic()
+    try:
+        vk = vkrun.Vkpath(args.vkpath, log)
+    except vkrun.VkpathError as e:
+        print("bench: %s" % e, file=sys.stderr)
+        return 1
+    load_before = load_average()
+    log("bench: %s mode, vkpath %s, samplers %s (reference: %s), results in %s" %
+        (mode, vk.version, ", ".join(vk.samplers), vk.default_sampler, args.out))
+    # Every run: the warm shader cache of the cache folder, lavapipe's default thread count.
+    env = {"MESA_SHADER_CACHE_DIR": os.path.join(args.cache, "mesa-shader-cache"), "LP_NUM_THREADS": None}
+    workdir = os.path.join(args.out, "runs")
+    failures, scenes, curves_by_scene, device = [], [], {}, {"name": "?", "driver_info": "?"}
+    for name, path, full_size, quick_size in SCENES:
+        if wanted and name not in wanted:
+            continue
+        size = quick_size if args.quick else full_size
+        log("bench: %s %dx%d" % (name, size[0], size[1]))
+        try:
+            scene = scene_file(name, path, cfg, size, args.cache)
+            res, curves = bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures)
+            scenes.append(res)
+            curves_by_scene[name] = curves
+            if not args.references_only:
+                with open(os.path.join(workdir, name, "ttfp-warm.json")) as f:
+                    device = json.load(f)["device"]
+        except (vkrun.VkpathError, references.ReferenceRefused, subprocess.SubprocessError, OSError) as e:
+            log("bench: %s: %s" % (name, e))
+            failures.append("%s: %s" % (name, e))
+            scenes.append({"name": name, "size": "%dx%d" % size, "skipped": str(e).replace("|", "/")})
+    if args.references_only:
+        for s in scenes:
+            r = s.get("reference")
+            log("bench: %s: %s" % (s["name"], "%d spp, relMSE floor %.3g" % (r["spp"], r["floor_relmse"]) if r
+                                   else "skipped: " + s.get("skipped", "?")))
+        return 1 if failures else 0
+    rows = sum(s["overhead"]["rows"] for s in scenes if "overhead" in s)
+    secs = sum(s["overhead"]["seconds"] for s in scenes if "overhead" in s)
+    wall = sum(s["overhead"]["wall"] for s in scenes if "overhead" in s)
+    run = {
+        "mode": mode, "date": datetime.datetime.now().isoformat(timespec="seconds"), "vkpath_version": vk.version,
+        "git": git_describe(), "thresholds": list(THRESHOLDS), "default_sampler": vk.default_sampler,
+        "command": " ".join(sys.argv),
+        "machine": {"device": device["name"], "driver": device["driver_info"], "cpus": os.cpu_count(),
+                    "load_before": load_before, "load_after": load_average()},
+        "error_log_overhead": {"rows": rows, "seconds_per_row": secs / rows if rows else 0.0,
+                               "fraction": secs / wall if wall else 0.0},
+        "scenes": scenes, "failures": failures, "seconds": time.monotonic() - t0,
+    }
+    report.write_summary_json(os.path.join(args.out, "summary.json"), run)
+    report.write_summary_md(os.path.join(args.out, "summary.md"), run)
+    report.plot(os.path.join(args.out, "relmse_vs_time.png"), run, curves_by_scene)
+    log("bench: wrote %s/{summary.md, summary.json, relmse_vs_time.png, <scene>.csv} in %.0f s" %
+        (args.out, run["seconds"]))
+    if failures:
+        log("bench: %d check(s) failed:\n  %s" % (len(failures), "\n  ".join(failures)))
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

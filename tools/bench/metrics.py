@@ -1,0 +1,73 @@
+"""Error metrics and curve arithmetic of the benchmark harness (pure functions, unit-tested by
+test_bench.py).
+
+The metrics are those of `vkpath render --error-log` (host/render/error_metrics.h): over all pixels and
+the three channels, MSE = mean((x - y)^2) and relMSE = mean((x - y)^2 / (y^2 + 0.01)).
+"""
+import math
+
+import numpy as np
+
+REL_EPSILON = 0.01
+
+
+def mse(x, y):
+    d = np.asarray(x, np.float64) - np.asarray(y, np.float64)
+    return float(np.mean(d * d))
+
+
+def relmse(x, y):
+    x = np.asarray(x, np.float64)
+    y = np.asarray(y, np.float64)
+    return float(np.mean((x - y) ** 2 / (y * y + REL_EPSILON)))
+
+
+def noise_floor(half_a, half_b):
+    """The reference's own error, estimated from two independent half renders A and B (same spp,
+    different seeds) whose average R = (A + B) / 2 is the reference.
+
+    Per value, E[(A - B)^2] = 2 Var(half) and Var(R) = Var(half) / 2 = E[(A - B)^2] / 4, so the
+    reference's expected MSE against the truth is mean((A - B)^2) / 4. A render X independent of R
+    measures E[MSE(X, R)] = MSE(X, truth) + that floor. The relMSE floor is the same with each term
+    divided by (R^2 + 0.01), as vkpath divides by the reference. Returns (mse_floor, relmse_floor).
+    """
+    a = np.asarray(half_a, np.float64)
+    b = np.asarray(half_b, np.float64)
+    r = 0.5 * (a + b)
+    d2 = (a - b) ** 2 / 4.0
+    return float(np.mean(d2)), float(np.mean(d2 / (r * r + REL_EPSILON)))
+
+
+def interpolate_crossing(points, threshold):
+    """First time at which a decreasing error curve reaches `threshold`.
+
+    points: [(seconds, error), ...] in time order. The crossing between two logged points is
+    interpolated linearly in log(seconds)-log(error) (error ~ 1/t is a straight line there).
+    Returns the seconds, or None if no point is at or below the threshold.
+    """
+    prev = None
+    for t, e in points:
+        if e <= threshold:
+            if prev is None or prev[1] <= e or prev[0] <= 0 or t <= 0 or e <= 0:
+                return t
+            lt0, lt1 = math.log(prev[0]), math.log(t)
+            le0, le1 = math.log(prev[1]), math.log(e)
+            f = (math.log(threshold) - le0) / (le1 - le0)
+            return math.exp(lt0 + f * (lt1 - lt0))
+        prev = (t, e)
+    return None
+
+
+def extrapolate_crossing(t_last, e_last, t_start, threshold):
+    """Time at which an unbiased Monte Carlo error, e(t) ~ 1 / (t - t_start) once sampling has
+    started at t_start, falls to `threshold` from its last value e_last at t_last. None if it cannot
+    be extrapolated (no positive error or time)."""
+    if e_last <= 0 or t_last <= t_start or threshold <= 0:
+        return None
+    return t_start + (t_last - t_start) * e_last / threshold
+
+
+def needed_total_spp(floor_rel, spp_total, target_floor):
+    """Total spp (both halves) for a relMSE floor of target_floor, given the floor floor_rel measured
+    with spp_total samples per pixel: the floor falls as 1/spp."""
+    return int(math.ceil(spp_total * floor_rel / target_floor))

@@ -1,0 +1,161 @@
+"""The benchmark's outputs: one CSV per scene (the time-versus-error curves), summary.md, summary.json and
+relmse_vs_time.png."""
+import csv
+import json
+import math
+import os
+
+CURVE_COLUMNS = ["scene", "sampler", "setting", "spp", "seconds", "rmse", "relmse", "relmse_minus_floor",
+                 "rmse_minus_floor", "ref_limited", "mean_r", "mean_g", "mean_b"]
+
+
+def write_curves_csv(path, scene, curves, ref):
+    """curves: {sampler: [row dicts of the error log, with "ref_limited"]}."""
+    tmp = path + ".tmp"
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(CURVE_COLUMNS)
+        for sampler, rows in curves.items():
+            for r in rows:
+                w.writerow([scene, sampler, "auto", r["spp"], "%.6f" % r["seconds"], "%.9g" % r["rmse"],
+                            "%.9g" % r["relmse"], "%.9g" % (r["relmse"] - ref["floor_relmse"]),
+                            "%.9g" % math.sqrt(max(r["rmse"] ** 2 - ref["floor_mse"], 0.0)),
+                            int(r["ref_limited"]), "%.9g" % r["mean_r"], "%.9g" % r["mean_g"], "%.9g" % r["mean_b"]])
+    os.replace(tmp, path)
+
+
+def fmt_s(x):
+    return "—" if x is None else ("%.3g s" % x if x < 100 else "%.0f s" % x)
+
+
+def fmt_rate(x):
+    if x is None:
+        return "—"
+    for unit, div in (("G", 1e9), ("M", 1e6), ("k", 1e3)):
+        if x >= div:
+            return "%.3g %s" % (x / div, unit)
+    return "%.3g" % x
+
+
+def fmt_cross(c):
+    """A threshold crossing {"seconds", "how"} as text."""
+    if c is None:
+        return "—"
+    if c.get("seconds") is None:
+        return "n/a (%s)" % c["how"]
+    if c["how"] == "measured":
+        return fmt_s(c["seconds"])
+    return "≈ " + fmt_s(c["seconds"]) + " (extrap.)"
+
+
+def write_summary_md(path, run):
+    """run: the dict that summary.json holds (see bench.py)."""
+    L = []
+    m = run["machine"]
+    L.append("# vkpath benchmark (%s)" % run["mode"])
+    L.append("")
+    L.append("%s, vkpath %s (git %s), device %s, driver %s, %d CPUs; load average %s before, %s after; "
+             "%.0f s in all." % (run["date"], run["vkpath_version"], run["git"], m["device"], m["driver"], m["cpus"],
+                                 m["load_before"], m["load_after"], run["seconds"]))
+    L.append("")
+    L.append("Thresholds are relMSE against the reference; times are wall seconds since process start "
+             "(set-up, scene load, BVH, shader JIT with a warm Mesa cache, error rows: everything). "
+             "A curve point is *reference-limited* when the reference's own noise floor is more than 20 % "
+             "of it; such points are not used, and a threshold not reached by a reliable point is "
+             "extrapolated with error ~ 1/t (marked).")
+    L.append("")
+    L.append("## Scenes")
+    L.append("")
+    L.append("| scene | size | primitives | load s | reference (spp, floor relMSE / RMSE) | first pixel cold | "
+             "first pixel warm | 1 → 2 threads | auto / full variant |")
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    for s in run["scenes"]:
+        if s.get("skipped"):
+            L.append("| %s | %s | %s | — | skipped: %s | | | | |" % (s["name"], s.get("size", ""), s.get("primitives", ""),
+                                                                   s["skipped"]))
+            continue
+        r, sc = s["reference"], s["scaling"]
+        L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
+            s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
+            r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
+            fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"]), sc["threads_ratio"], sc["variant_ratio"],
+            fmt_s(sc["auto_first_batch"]), fmt_s(sc["full_first_batch"])))
+    L.append("")
+    L.append("## Samplers")
+    L.append("")
+    thr = run["thresholds"]
+    L.append("| scene | sampler | samples/s | rays/s | spp in %s | relMSE | RMSE | %s |" % (
+        "the run", " | ".join("t(relMSE ≤ %g)" % t for t in thr)))
+    L.append("|---|---|---|---|---|---|---|" + "---|" * len(thr))
+    for s in run["scenes"]:
+        if s.get("skipped"):
+            continue
+        for name, c in s["samplers"].items():
+            L.append("| %s | %s | %s | %s | %d in %.0f s | %.3g | %.3g | %s |" % (
+                s["name"], name, fmt_rate(c["samples_per_second"]), fmt_rate(c["rays_per_second"]), c["spp"],
+                c["seconds"], c["relmse"], c["rmse"], " | ".join(fmt_cross(c["crossings"][str(t)]) for t in thr)))
+    L.append("")
+    L.append("samples/s and rays/s: steady rates of the curve runs (first batch, with the JIT, left out), "
+             "2 threads. Scaling columns: steady samples/s with LP_NUM_THREADS=2 over LP_NUM_THREADS=1, and "
+             "`--variant auto` over `--variant full` (both 2 threads, default sampler %s)." % run["default_sampler"])
+    L.append("")
+    o = run["error_log_overhead"]
+    L.append("Error-log rows: %d rows cost %.1f ms each on average (image read-back + error + CSV row; %.2f %% of "
+             "the curve runs' wall time)." % (o["rows"], 1e3 * o["seconds_per_row"], 100 * o["fraction"]))
+    if run.get("failures"):
+        L.append("")
+        L.append("## Checks that failed")
+        L.append("")
+        L.extend("- " + f for f in run["failures"])
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(L) + "\n")
+    os.replace(path + ".tmp", path)
+
+
+def write_summary_json(path, run):
+    with open(path + ".tmp", "w") as f:
+        json.dump(run, f, indent=1)
+    os.replace(path + ".tmp", path)
+
+
+def plot(path, run, curves_by_scene):
+    """Log-log relMSE against seconds, one panel per scene, one line per sampler."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    scenes = [s for s in run["scenes"] if not s.get("skipped")]
+    if not scenes:
+        return
+    cols = 2 if len(scenes) > 1 else 1
+    rows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6.4 * cols, 4.6 * rows), squeeze=False)
+    for ax, s in zip(axes.flat, scenes):
+        for i, (sampler, pts) in enumerate(curves_by_scene[s["name"]].items()):
+            color = "C%d" % i
+            good = [(p["seconds"], p["relmse"]) for p in pts if not p["ref_limited"]]
+            limited = [(p["seconds"], p["relmse"]) for p in pts if p["ref_limited"]]
+            if good and limited:
+                limited.insert(0, good[-1])  # the dotted part continues the solid one
+            if good:
+                ax.loglog(*zip(*good), "o-", color=color, ms=3, label=sampler)
+            if limited:
+                ax.loglog(*zip(*limited), "o:", color=color, ms=3, mfc="none", alpha=0.6,
+                          label=None if good else sampler)
+        ax.axhline(s["reference"]["floor_relmse"], color="k", ls="--", lw=0.8,
+                   label="reference floor (%d spp)" % s["reference"]["spp"])
+        for t in run["thresholds"]:
+            ax.axhline(t, color="0.6", ls=":", lw=0.8)
+        ax.set_title("%s %s" % (s["name"], s["size"]))
+        ax.set_xlabel("seconds since process start")
+        ax.set_ylabel("relMSE")
+        ax.grid(True, which="both", alpha=0.25)
+        ax.legend(fontsize=8)
+    for ax in list(axes.flat)[len(scenes):]:
+        ax.axis("off")
+    fig.suptitle("vkpath %s, %s (%s): relMSE against time; hollow = reference-limited" %
+                 (run["vkpath_version"], run["machine"]["device"], run["mode"]), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path + ".tmp.png", dpi=110)
+    plt.close(fig)
+    os.replace(path + ".tmp.png", path)

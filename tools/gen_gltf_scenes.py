@@ -1,0 +1,381 @@
+#!/usr/bin/env python3
+"""Write the small glTF 2.0 test scenes of scenes/gltf/ (scenes/README.md, "glTF"), by hand,
+with the Python standard library only. Each file exercises one part of vkpath's glTF loader and
+has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
+
+  modes.gltf + modes.bin       every triangle topology: non-indexed, u8/u16/u32 indices, strip, fan
+  hierarchy.gltf               nested TRS and matrix nodes, a mirror, a zero scale, two scenes
+                               (buffer as a base64 data URI)
+  accessors.glb                GLB container; interleaved (strided) attributes, sparse accessors
+                               (also on an accessor without bufferView), normalized integers,
+                               KHR_mesh_quantization
+  materials.gltf + .bin        every material parameter and extension vkpath reads, textures
+  + textures/checker.png       (data URI and external PNG), samplers, KHR_texture_transform
+  cameras.gltf                 orthographic and perspective cameras under a rotated parent
+  no-camera.gltf               no camera: vkpath frames the scene's bounds
+  emissive.glb                 emissive triangles (single- and double-sided), a PNG inside the GLB
+  extensions.gltf              an extension vkpath does not implement, only used: one warning
+
+Deterministic: running it again writes byte-identical files.
+Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
+       tools/gen_gltf_scenes.py --grid TRIANGLES OUT.glb
+           a wavy height field of at least TRIANGLES triangles (indexed, uint32, POSITION + NORMAL,
+           a camera and an emissive panel) for load-time and memory measurements; not committed.
+"""
+import array
+import base64
+import json
+import math
+import pathlib
+import struct
+import sys
+import zlib
+
+FLOAT, BYTE, UBYTE, SHORT, USHORT, UINT = 5126, 5120, 5121, 5122, 5123, 5125
+FMT = {FLOAT: "f", BYTE: "b", UBYTE: "B", SHORT: "h", USHORT: "H", UINT: "I"}
+NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
+TRIANGLES, STRIP, FAN = 4, 5, 6
+
+
+def png(width, height, rgba):
+    """A PNG (RGBA, 8 bits) of width x height pixels, rgba = rows of (r, g, b, a) tuples."""
+    def chunk(kind, data):
+        c = struct.pack(">I", len(data)) + kind + data
+        return c + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    raw = b"".join(b"\x00" + bytes(v for px in row for v in px) for row in rgba)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+CHECKER_2 = png(2, 2, [[(255, 0, 0, 255), (0, 255, 0, 255)], [(0, 0, 255, 255), (255, 255, 255, 128)]])
+CHECKER_4 = png(4, 4, [[(0, 128, 255, 255) if (x + y) % 2 == 0 else (255, 64, 0, 255) for x in range(4)]
+                       for y in range(4)])
+
+
+class Gltf:
+    """A glTF document under construction, with one binary buffer."""
+
+    def __init__(self):
+        self.doc = {"asset": {"version": "2.0", "generator": "vkpath tools/gen_gltf_scenes.py"}}
+        self.bin = bytearray()
+
+    def add(self, key, item):
+        self.doc.setdefault(key, []).append(item)
+        return len(self.doc[key]) - 1
+
+    def view(self, data, stride=None, target=None):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        v = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)}
+        if stride:
+            v["byteStride"] = stride
+        if target:
+            v["target"] = target
+        self.bin += data
+        return self.add("bufferViews", v)
+
+    def accessor(self, values, ctype, atype, normalized=False, minmax=False, view=None, offset=0, count=None):
+        """An accessor of values (flat list); its own tightly packed bufferView unless view is given."""
+        n = NCOMP[atype]
+        if view is None and values is not None:
+            view = self.view(struct.pack("<%d%s" % (len(values), FMT[ctype]), *values))
+        a = {"componentType": ctype, "type": atype, "count": count if count is not None else len(values) // n}
+        if view is not None:
+            a["bufferView"] = view
+        if offset:
+            a["byteOffset"] = offset
+        if normalized:
+            a["normalized"] = True
+        if minmax:
+            a["min"] = [min(values[i::n]) for i in range(n)]
+            a["max"] = [max(values[i::n]) for i in range(n)]
+        return self.add("accessors", a)
+
+    def positions(self, pts):
+        return self.accessor([c for p in pts for c in p], FLOAT, "VEC3", minmax=True)
+
+    def image_view(self, data, mime):
+        return self.add("images", {"bufferView": self.view(data), "mimeType": mime})
+
+    def write_gltf(self, path, bin_name=None):
+        """.gltf with the buffer in bin_name, or as a data URI when bin_name is None."""
+        if self.bin:
+            uri = bin_name or "data:application/octet-stream;base64," + base64.b64encode(bytes(self.bin)).decode()
+            self.doc["buffers"] = [{"byteLength": len(self.bin), "uri": uri}]
+            if bin_name:
+                (path.parent / bin_name).write_bytes(bytes(self.bin))
+        path.write_text(json.dumps(self.doc, indent=1) + "\n")
+
+    def write_glb(self, path):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        self.doc["buffers"] = [{"byteLength": len(self.bin)}]
+        js = json.dumps(self.doc, separators=(",", ":")).encode()
+        js += b" " * (-len(js) % 4)
+        body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(self.bin), 0x004E4942) + bytes(self.bin)
+        path.write_bytes(struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body)
+
+
+def square(x0, y0=0.0, z=0.0):
+    """The corners of the unit square at (x0, y0), counter-clockwise seen from +z."""
+    return [(x0, y0, z), (x0 + 1, y0, z), (x0 + 1, y0 + 1, z), (x0, y0 + 1, z)]
+
+
+def modes(out):
+    g = Gltf()
+    prims = []
+    tri = square(0)
+    prims.append({"attributes": {"POSITION": g.positions([tri[0], tri[1], tri[2], tri[0], tri[2], tri[3]])}})
+    for x0, ctype in ((2, UBYTE), (4, USHORT), (6, UINT)):
+        prims.append({"attributes": {"POSITION": g.positions(square(x0))},
+                      "indices": g.accessor([0, 1, 2, 0, 2, 3], ctype, "SCALAR")})
+    s = square(8)
+    prims.append({"attributes": {"POSITION": g.positions([s[0], s[1], s[3], s[2]])}, "mode": STRIP})
+    f = square(10)  # fan around the centre, closed by repeating the first corner: 4 triangles
+    prims.append({"attributes": {"POSITION": g.positions([(10.5, 0.5, 0.0)] + f)},
+                  "indices": g.accessor([0, 1, 2, 3, 4, 1], USHORT, "SCALAR"), "mode": FAN})
+    g.add("meshes", {"name": "modes", "primitives": prims})
+    g.add("nodes", {"name": "modes", "mesh": 0})
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0]}]
+    g.write_gltf(out / "modes.gltf", "modes.bin")
+
+
+def hierarchy(out):
+    g = Gltf()
+    pos = g.positions([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+    nrm = g.accessor([0, 0, 1] * 3, FLOAT, "VEC3")
+    g.add("meshes", {"name": "triangle", "primitives": [{"attributes": {"POSITION": pos, "NORMAL": nrm}}]})
+    h = math.sqrt(0.5)
+    g.doc["nodes"] = [
+        {"name": "parent", "translation": [10, 0, 0], "children": [1, 2, 3, 5]},
+        {"name": "trs", "translation": [0, 5, 0], "rotation": [0, 0, h, h], "scale": [2, 2, 2], "mesh": 0},
+        {"name": "matrix", "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 3, 1], "children": [4]},
+        {"name": "mirror", "scale": [-1, 1, 1], "mesh": 0},
+        {"name": "child", "translation": [1, 0, 0], "mesh": 0},
+        {"name": "hidden", "scale": [0, 0, 0], "mesh": 0},
+        {"name": "other scene", "mesh": 0},
+    ]
+    g.doc["scene"] = 1
+    g.doc["scenes"] = [{"name": "other", "nodes": [6]}, {"name": "main", "nodes": [0]}]
+    g.write_gltf(out / "hierarchy.gltf")
+
+
+def accessors(out):
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_mesh_quantization"]
+    g.doc["extensionsRequired"] = ["KHR_mesh_quantization"]
+    prims = []
+    # 0: interleaved: POSITION float3 (12 bytes) + NORMAL normalized int8 x3 + pad + TEXCOORD_0 normalized uint16 x2.
+    verts = square(0)
+    uvs = [(0, 65535), (65535, 65535), (65535, 0), (0, 0)]
+    data = b"".join(struct.pack("<3f3bx2H", *p, 0, 0, 127, *uv) for p, uv in zip(verts, uvs))
+    v = g.view(data, stride=20, target=34962)
+    prims.append({"attributes": {
+        "POSITION": g.accessor([c for p in verts for c in p], FLOAT, "VEC3", minmax=True, view=v, count=4),
+        "NORMAL": g.accessor(None, BYTE, "VEC3", normalized=True, view=v, offset=12, count=4),
+        "TEXCOORD_0": g.accessor(None, USHORT, "VEC2", normalized=True, view=v, offset=16, count=4)},
+        "indices": g.accessor([0, 1, 2, 0, 2, 3], USHORT, "SCALAR")})
+    # 1: sparse: vertex 3 of the square at x = 2 moves from (2, 1, 0) to (2, 2, 0).
+    p1 = g.positions(square(2))
+    g.doc["accessors"][p1]["sparse"] = {"count": 1, "indices": {"bufferView": g.view(struct.pack("<B", 3)), "componentType": UBYTE},
+                                        "values": {"bufferView": g.view(struct.pack("<3f", 2, 2, 0))}}
+    g.doc["accessors"][p1]["max"] = [3, 2, 0]
+    prims.append({"attributes": {"POSITION": p1}, "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR")})
+    # 2: no bufferView (all zeros) + sparse values for all three vertices.
+    p2 = g.add("accessors", {"componentType": FLOAT, "type": "VEC3", "count": 3, "min": [4, 0, 0], "max": [5, 1, 0],
+                             "sparse": {"count": 3, "indices": {"bufferView": g.view(struct.pack("<3I", 0, 1, 2)), "componentType": UINT},
+                                        "values": {"bufferView": g.view(struct.pack("<9f", 4, 0, 0, 5, 0, 0, 4, 1, 0))}}})
+    prims.append({"attributes": {"POSITION": p2}})
+    # 3: KHR_mesh_quantization: int16 positions (not normalized), normalized uint8 UVs.
+    prims.append({"attributes": {
+        "POSITION": g.accessor([6, 0, 0, 7, 0, 0, 6, 1, 0], SHORT, "VEC3", minmax=True),
+        "TEXCOORD_0": g.accessor([0, 0, 255, 0, 0, 51], UBYTE, "VEC2", normalized=True)}})
+    g.add("meshes", {"name": "accessors", "primitives": prims})
+    g.add("nodes", {"mesh": 0})
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0]}]
+    g.write_glb(out / "accessors.glb")
+
+
+def quad_mesh(g, name, x0, material=None, tangent=False):
+    """A unit square at x = x0 facing +z with NORMAL and TEXCOORD_0 (and TANGENT)."""
+    attrs = {"POSITION": g.positions(square(x0)), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+             "TEXCOORD_0": g.accessor([0, 1, 1, 1, 1, 0, 0, 0], FLOAT, "VEC2")}
+    if tangent:
+        attrs["TANGENT"] = g.accessor([1, 0, 0, -1] * 4, FLOAT, "VEC4")
+    prim = {"attributes": attrs, "indices": g.accessor([0, 1, 2, 0, 2, 3], USHORT, "SCALAR")}
+    if material is not None:
+        prim["material"] = material
+    return g.add("meshes", {"name": name, "primitives": [prim]})
+
+
+def materials(out):
+    g = Gltf()
+    (out / "textures").mkdir(exist_ok=True)
+    (out / "textures" / "checker.png").write_bytes(CHECKER_4)
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+                               "KHR_materials_specular", "KHR_texture_transform"]
+    g.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(CHECKER_2).decode()},
+                       {"uri": "textures/checker.png"}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 33071, "wrapT": 33648}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 1}]
+    g.doc["materials"] = [
+        {"name": "factors", "doubleSided": True,
+         "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.2, 0.1, 1], "metallicFactor": 0.25, "roughnessFactor": 0.6}},
+        {"name": "textured",
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1}},
+         "normalTexture": {"index": 1, "scale": 0.5, "extensions": {"KHR_texture_transform": {
+             "offset": [0.5, 0], "rotation": 0.3, "scale": [2, 2]}}}},
+        {"name": "lamp", "emissiveFactor": [1, 0.5, 0.25], "emissiveTexture": {"index": 0},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+        {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.33}}},
+        {"name": "coated", "pbrMetallicRoughness": {"metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {"specularFactor": 0, "specularColorFactor": [1, 0.9, 0.8],
+                                                   "specularTexture": {"index": 1}}}},
+        {"name": "leaf", "alphaMode": "MASK", "alphaCutoff": 0.3, "pbrMetallicRoughness": {"metallicFactor": 0}},
+        {"name": "veil", "alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5], "metallicFactor": 0}},
+        {"name": "lamp2", "doubleSided": True, "emissiveFactor": [1, 1, 1]},
+    ]
+    names = ["factors", "textured", "lamp", "glass", "coated", "leaf", "veil", "lamp2"]
+    nodes = [{"name": n, "mesh": quad_mesh(g, n, 2 * i, material=i)} for i, n in enumerate(names)]
+    nodes.append({"name": "default", "mesh": quad_mesh(g, "default", 16)})
+    nodes.append({"name": "tangents", "mesh": quad_mesh(g, "tangents", 18, material=1, tangent=True)})
+    g.doc["nodes"] = nodes
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(nodes)))}]
+    g.write_gltf(out / "materials.gltf", "materials.bin")
+
+
+def cameras(out):
+    g = Gltf()
+    g.add("meshes", {"primitives": [{"attributes": {"POSITION": g.positions([(-1, -1, 0), (1, -1, 0), (0, 1, 0)])}}]})
+    g.doc["cameras"] = [
+        {"name": "ortho", "type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 100}},
+        {"name": "wide", "type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1}},
+        {"name": "front", "type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.1}},
+    ]
+    h = math.sqrt(0.5)
+    g.doc["nodes"] = [
+        {"name": "ortho", "camera": 0},
+        {"name": "rig", "rotation": [0, h, 0, h], "children": [2]},
+        {"name": "wide", "camera": 1, "translation": [0, 1, 5]},
+        {"name": "front", "camera": 2, "translation": [0, 0, 10]},
+        {"name": "triangle", "mesh": 0},
+    ]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 3, 4]}]
+    g.write_gltf(out / "cameras.gltf")
+
+
+def no_camera(out):
+    g = Gltf()
+    c = [(x, y, z) for z in (-1, 1) for y in (-1, 1) for x in (-1, 1)]  # corner i: bit0 x, bit1 y, bit2 z
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    idx = [i for a, b, cc, d in faces for i in (a, b, cc, a, cc, d)]
+    g.add("meshes", {"name": "cube", "primitives": [{"attributes": {"POSITION": g.positions(c)},
+                                                     "indices": g.accessor(idx, UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": "cube", "mesh": 0, "translation": [3, 2, 1]}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0]}]
+    g.write_gltf(out / "no-camera.gltf")
+
+
+def emissive(out):
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    img = g.image_view(CHECKER_4, "image/png")
+    g.doc["textures"] = [{"source": img}]
+    g.doc["materials"] = [
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}},
+        {"name": "panel", "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+        {"name": "sign", "doubleSided": True, "emissiveFactor": [0, 0.5, 1],
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+    ]
+    floor = [(-2, 0, 2), (2, 0, 2), (2, 0, -2), (-2, 0, -2)]  # faces +y
+    panel = [(-0.5, 2, -0.5), (0.5, 2, -0.5), (0.5, 2, 0.5), (-0.5, 2, 0.5)]  # faces -y (down)
+    quad = [0, 1, 2, 0, 2, 3]
+    g.add("meshes", {"name": "floor", "primitives": [{"attributes": {
+        "POSITION": g.positions(floor), "TEXCOORD_0": g.accessor([0, 2, 2, 2, 2, 0, 0, 0], FLOAT, "VEC2")},
+        "indices": g.accessor(quad, UBYTE, "SCALAR"), "material": 0}]})
+    g.add("meshes", {"name": "panel", "primitives": [{"attributes": {"POSITION": g.positions(panel)},
+                                                      "indices": g.accessor(quad, UBYTE, "SCALAR"), "material": 1}]})
+    g.add("meshes", {"name": "sign", "primitives": [{"attributes": {
+        "POSITION": g.positions([(-1, 0.2, -1), (1, 0.2, -1), (0, 1.4, -1)])}, "material": 2}]})
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1}}]
+    g.doc["nodes"] = [{"mesh": 0}, {"mesh": 1}, {"mesh": 2},
+                      {"camera": 0, "translation": [0, 1, 5]}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2, 3]}]
+    g.write_glb(out / "emissive.glb")
+
+
+def extensions(out):
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 10}]}}
+    g.add("meshes", {"primitives": [{"attributes": {"POSITION": g.positions([(0, 0, 0), (1, 0, 0), (0, 1, 0)])}}]})
+    g.doc["nodes"] = [{"mesh": 0}, {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1]}]
+    g.write_gltf(out / "extensions.gltf")
+
+
+def grid(triangles, path):
+    """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
+    n = max(1, math.ceil(math.sqrt(triangles / 2)))
+    g = Gltf()
+    pos, nrm = array.array("f"), array.array("f")
+    for j in range(n + 1):
+        z = -1 + 2 * j / n
+        for i in range(n + 1):
+            x = -1 + 2 * i / n
+            y = 0.05 * math.sin(8 * x) * math.cos(8 * z)
+            dx, dz = 0.4 * math.cos(8 * x) * math.cos(8 * z), -0.4 * math.sin(8 * x) * math.sin(8 * z)
+            inv = 1 / math.sqrt(dx * dx + 1 + dz * dz)
+            pos.extend((x, y, z))
+            nrm.extend((-dx * inv, inv, -dz * inv))
+    idx = array.array("I")
+    for j in range(n):
+        row, nxt = j * (n + 1), (j + 1) * (n + 1)
+        for i in range(n):
+            a, b, c, d = row + i, row + i + 1, nxt + i + 1, nxt + i  # counter-clockwise seen from +y
+            idx.extend((a, d, c, a, c, b))
+    if sys.byteorder != "little":
+        for arr in (pos, nrm, idx):
+            arr.byteswap()
+    nv = (n + 1) ** 2
+    p = g.add("accessors", {"bufferView": g.view(pos.tobytes()), "componentType": FLOAT, "type": "VEC3", "count": nv,
+                            "min": [-1, -0.05, -1], "max": [1, 0.05, 1]})
+    q = g.add("accessors", {"bufferView": g.view(nrm.tobytes()), "componentType": FLOAT, "type": "VEC3", "count": nv})
+    i = g.add("accessors", {"bufferView": g.view(idx.tobytes()), "componentType": UINT, "type": "SCALAR", "count": len(idx)})
+    g.doc["materials"] = [{"name": "ground", "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.7, 1], "metallicFactor": 0}},
+                          {"name": "panel", "emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}}]
+    g.add("meshes", {"name": "grid", "primitives": [{"attributes": {"POSITION": p, "NORMAL": q}, "indices": i, "material": 0}]})
+    panel = g.positions([(-0.3, 1, -0.3), (0.3, 1, -0.3), (0.3, 1, 0.3), (-0.3, 1, 0.3)])
+    g.add("meshes", {"name": "panel", "primitives": [{"attributes": {"POSITION": panel},
+                                                      "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR"), "material": 1}]})
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.7, "aspectRatio": 1, "znear": 0.01}}]
+    g.doc["nodes"] = [{"mesh": 0}, {"mesh": 1},
+                      {"camera": 0, "translation": [0, 1.6, 2.2], "rotation": [-0.2588190451, 0, 0, 0.9659258263]}]  # 30 degrees down
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2]}]
+    g.write_glb(path)
+    print("%s: %d triangles, %d vertices, %d bytes" % (path, 2 * n * n + 2, nv + 4, path.stat().st_size))
+
+
+def main():
+    if len(sys.argv) == 4 and sys.argv[1] == "--grid":
+        grid(int(sys.argv[2]), pathlib.Path(sys.argv[3]))
+        return
+    out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
+    out.mkdir(parents=True, exist_ok=True)
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions):
+        write(out)
+
+
+if __name__ == "__main__":
+    main()
