@@ -31,7 +31,7 @@ inline constexpr std::uint64_t kGltfMaxVertices = 1ull << 26;
 /// Load a glTF 2.0 file as a whole scene: the triangles of the chosen scene's node hierarchy
 /// (world space), its materials (MaterialType::Pbr) and textures, emissive triangles as lights,
 /// and a camera (the file's, or one that frames the scene's bounds). Render settings are the JSON
-/// defaults. Warnings (e.g. an extension used but not implemented) go to Scene::warnings.
+/// defaults. Warnings (e.g. an extension used but not supported) go to Scene::warnings.
 /// Throws InputError with one line "<file>: <place>: <what is wrong>", where place names the
 /// mesh / primitive / accessor / material / node / image.
 Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& options = {});

@@ -285,7 +285,7 @@ Document readDocument(const std::filesystem::path& path) {
     }
     for (const std::string& e : doc.model.extensionsUsed) {
         if (!extensionImplemented(e)) {
-            doc.warnings.push_back(line(doc.file, "extensionsUsed", "extension " + e + " is not implemented by vkpath: ignored"));
+            doc.warnings.push_back(line(doc.file, "extensionsUsed", "extension " + e + " is not supported by vkpath: ignored"));
         }
     }
     return doc;

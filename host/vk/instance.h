@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "vk/device_select.h"
-#include "vk/vulkan.h"
+#include "vk/vk_raii.h"
 
 namespace vkp {
 
