@@ -20,6 +20,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "shared/sampling.h"
 #include "shared/scatter.h"
 #include "shared/ray_offset.h"
+#include "shared/compensated_sum.h"
 #include "lib/scene_lights.glsl"
 #include "lib/traverse.glsl"
 
@@ -201,8 +202,10 @@ void main() {
     if (pix.x >= width || pix.y >= frame.size.y) return;
     uint pixel = pix.y * width + pix.x;
 
-    vec4 sum = accumSum[pixel];
-    vec4 sq = accumSq[pixel];
+    vec4 sum = accumSum[2u * pixel];
+    vec4 sumLo = accumSum[2u * pixel + 1u];
+    vec4 sq = accumSq[2u * pixel];
+    vec4 sqLo = accumSq[2u * pixel + 1u];
     uint rays = 0u;
     uint nonfinite = 0u;
     uint cut = 0u;
@@ -222,15 +225,17 @@ void main() {
             if (any(isnan(L)) || any(isinf(L))) {
                 nonfinite++;
             } else {
-                sum += vec4(L, 1.0f);
-                sq += vec4(L * L, 0.0f);
+                addCompensated(sum, sumLo, vec4(L, 1.0f));
+                addCompensated(sq, sqLo, vec4(L * L, 0.0f));
             }
             k++;
             s = startPath(pix, pixel, push.batch.x + min(k, push.batch.y - 1u));
         }
     }
-    accumSum[pixel] = sum;
-    accumSq[pixel] = sq;
+    accumSum[2u * pixel] = sum;
+    accumSum[2u * pixel + 1u] = sumLo;
+    accumSq[2u * pixel] = sq;
+    accumSq[2u * pixel + 1u] = sqLo;
 
     uint old = atomicAdd(counters[COUNTER_RAYS_LO], rays);
     if (old + rays < old) atomicAdd(counters[COUNTER_RAYS_HI], 1u);

@@ -54,8 +54,8 @@ gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne) {
             break;
         case ShapeType::Triangle:
             p.p0 = v4(s.p0, header);
-            p.p1 = v4(s.p1 - s.p0, 0.0f);
-            p.p2 = v4(s.p2 - s.p0, light);
+            p.p1 = v4(s.p1, 0.0f);  // vertices, not edges (shaders/shared/gpu_types.h)
+            p.p2 = v4(s.p2, light);
             break;
     }
     return p;

@@ -37,8 +37,8 @@ std::unique_ptr<GpuBuffer> uploadTexels(VulkanDevice& dev, const std::vector<T>&
 Image PixelSums::mean() const {
     Image img(width, height);
     for (std::size_t i = 0; i < img.pixelCount(); ++i) {
-        const float n = sum[4 * i + 3];
-        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = n > 0.0f ? sum[4 * i + c] / n : 0.0f;
+        const double n = sum[4 * i + 3];
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = n > 0.0 ? float(sum[4 * i + c] / n) : 0.0f;
     }
     return img;
 }
@@ -90,7 +90,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->materialsView = impl_->materials->texelView();
     impl_->lightsView = impl_->lights->texelView();
 
-    const std::size_t pixelBytes = std::size_t(width_) * height_ * 4 * sizeof(float);
+    // Two vec4 per pixel: the sum and its compensation (shaders/shared/compensated_sum.h).
+    const std::size_t pixelBytes = std::size_t(width_) * height_ * 2 * 4 * sizeof(float);
     impl_->sum = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
     impl_->sumSq = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
     impl_->counters = std::make_unique<GpuBuffer>(device, gpu::COUNTER_COUNT * 4, vk::BufferUsageFlagBits::eStorageBuffer);
@@ -162,10 +163,17 @@ PixelSums Renderer::readSums() {
     PixelSums s;
     s.width = width_;
     s.height = height_;
-    s.sum.resize(std::size_t(width_) * height_ * 4);
-    s.sumSq.resize(s.sum.size());
-    impl_->sum->download(s.sum.data(), s.sum.size() * sizeof(float));
-    impl_->sumSq->download(s.sumSq.data(), s.sumSq.size() * sizeof(float));
+    const std::size_t pixels = std::size_t(width_) * height_;
+    std::vector<float> raw(pixels * 8);
+    // Combines each pixel's (hi, lo) pair in double (shaders/lib/bindings.glsl).
+    auto combine = [&](GpuBuffer& buffer, std::vector<double>& out) {
+        buffer.download(raw.data(), raw.size() * sizeof(float));
+        out.resize(pixels * 4);
+        for (std::size_t i = 0; i < pixels; ++i)
+            for (int c = 0; c < 4; ++c) out[4 * i + c] = double(raw[8 * i + c]) + double(raw[8 * i + 4 + c]);
+    };
+    combine(*impl_->sum, s.sum);
+    combine(*impl_->sumSq, s.sumSq);
     return s;
 }
 

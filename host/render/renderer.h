@@ -29,11 +29,11 @@ struct RenderCounters {
     std::uint64_t loopGuard = 0;  ///< paths cut short by the loop-pass guard (a bug if not 0)
 };
 
-/// Per-pixel sums as the device holds them: for pixel i, sum[4i..4i+2] = sum of samples (RGB),
+/// Per-pixel sums as the device holds them (each a compensated float pair, read as one double): for pixel i, sum[4i..4i+2] = sum of samples (RGB),
 /// sum[4i+3] = number of finite samples, sumSq[4i..4i+2] = sum of squares.
 struct PixelSums {
     std::uint32_t width = 0, height = 0;
-    std::vector<float> sum, sumSq;
+    std::vector<double> sum, sumSq;  ///< compensated device sums, combined in double
     /// The mean image (radiance); pixels without a sample are 0.
     Image mean() const;
     /// The variance of each pixel's mean (sample variance / n), per channel.

@@ -32,6 +32,8 @@ layout(set = 0, binding = 1) uniform usamplerBuffer uNodes;
 layout(set = 0, binding = 2) uniform usamplerBuffer uPrims;
 layout(set = 0, binding = 3) uniform usamplerBuffer uMaterials;
 layout(set = 0, binding = 4) uniform usamplerBuffer uLights;
+// Per pixel i: [2i] = running sum (hi), [2i+1] = its compensation (lo), shared/compensated_sum.h.
+// accumSum: RGB = sum of samples, w = number of finite samples; accumSq: RGB = sum of squares.
 layout(set = 0, binding = 5, std430) buffer AccumSum { vec4 accumSum[]; };
 layout(set = 0, binding = 6, std430) buffer AccumSq { vec4 accumSq[]; };
 layout(set = 0, binding = 7, std430) buffer Counters { uint counters[]; };

@@ -24,8 +24,8 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     s.pdf = 0.0f;
     uint kind = primKind(p);
     vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
-    vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
-    vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
+    vec3 e1 = primEdge1(p);  // triangles store vertices
+    vec3 e2 = primEdge2(p);
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
         s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi) : sampleQuadLight(p0, e1, e2, x, xi);
@@ -37,8 +37,8 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
 float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     uint kind = primKind(p);
     vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
-    vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
-    vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
+    vec3 e1 = primEdge1(p);  // triangles store vertices
+    vec3 e2 = primEdge2(p);
     float pdf = 0.0f;
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)

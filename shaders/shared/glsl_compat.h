@@ -4,6 +4,8 @@
 //   - float literals carry an `f` suffix, unsigned ones a `u` suffix (both languages accept them);
 //   - functions are declared VKP_FN (inline in C++), output parameters use INOUT(T)/OUT(T);
 //   - no swizzles, no constructors of structs (assign the fields), no `const` arrays;
+//   - VKP_PRECISE on a variable keeps its arithmetic exactly as written (GLSL `precise`: no fma
+//     contraction, no algebraic rewriting such as (a + b) - a -> b by the driver's compiler);
 //   - GPU structs are made of vec4/uvec4/ivec4 members only, so std140/std430/texel layouts agree.
 #ifndef VKP_GLSL_COMPAT_H
 #define VKP_GLSL_COMPAT_H
@@ -16,12 +18,14 @@ namespace vkp::gpu {
 using namespace glm;
 using uint = std::uint32_t;
 }  // namespace vkp::gpu
+#define VKP_PRECISE
 #define VKP_BEGIN namespace vkp::gpu {
 #define VKP_END }
 #define VKP_FN inline
 #define INOUT(T) T&
 #define OUT(T) T&
 #else
+#define VKP_PRECISE precise
 #define VKP_BEGIN
 #define VKP_END
 #define VKP_FN

@@ -12,11 +12,13 @@ VKP_BEGIN
 // Kinds stored in the low 2 bits of the header word.
 const uint PRIM_SPHERE = 0u;
 const uint PRIM_QUAD = 1u;      // parallelogram Q + a u + b v, a,b in [0,1]
-const uint PRIM_TRIANGLE = 2u;  // v0 + a e1 + b e2, a,b >= 0, a + b <= 1
+const uint PRIM_TRIANGLE = 2u;  // v0 + a (v1 - v0) + b (v2 - v0), a,b >= 0, a + b <= 1
 // Header word (p0.w as bits): kind | (material << 2). Material indices < 2^30.
 // p0.xyz: sphere centre | quad Q | triangle v0        (world units)
-// p1.xyz: -             | quad u | triangle e1 = v1-v0; p1.w: sphere radius (else 0)
-// p2.xyz: -             | quad v | triangle e2 = v2-v0; p2.w: bits of light index + 1 (0: not a light)
+// p1.xyz: -             | quad u | triangle v1; p1.w: sphere radius (else 0)
+// p2.xyz: -             | quad v | triangle v2; p2.w: bits of light index + 1 (0: not a light)
+// Triangles keep their vertices, not edges: v0 + (v1 - v0) != v1 in float, and neighbours must see
+// bit-identical shared vertices for the watertight test (intersect.h). primEdge1/2 give the edges.
 struct GpuPrim {
     vec4 p0;
     vec4 p1;

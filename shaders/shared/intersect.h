@@ -54,13 +54,9 @@ VKP_FN float intersectParallelogram(vec3 Q, vec3 e1, vec3 e2, bool triangle, vec
     return (inside && inRange) ? t : VKP_FAR;
 }
 
-// `precise` forbids the GLSL compiler to contract a * b - c * d into an fma, which would break the
-// exact antisymmetry of the edge functions below (and the bit-exact agreement with C++).
-#ifdef __cplusplus
-#define VKP_PRECISE
-#else
-#define VKP_PRECISE precise
-#endif
+// VKP_PRECISE (glsl_compat.h) forbids the GLSL compiler to contract a * b - c * d into an fma,
+// which would break the exact antisymmetry of the edge functions below (and the bit-exact agreement
+// with C++).
 
 /// Watertight ray/triangle test (Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection",
 /// JCGT 2(1), 2013, sec. 3): the ray is made the +z axis of a sheared frame (z = the axis of the
@@ -129,6 +125,17 @@ VKP_FN int primLight(GpuPrim p) { return int(floatBitsToUint(p.p2.w)) - 1; }
 #define VKP_HAS_PARALLELOGRAMS true
 #endif
 
+/// First edge of a quad or triangle (world units): quad u as stored, triangle v1 - v0.
+VKP_FN vec3 primEdge1(GpuPrim p) {
+    vec3 e = vec3(p.p1.x, p.p1.y, p.p1.z);
+    return (primKind(p) == PRIM_TRIANGLE) ? e - vec3(p.p0.x, p.p0.y, p.p0.z) : e;
+}
+/// Second edge of a quad or triangle (world units): quad v as stored, triangle v2 - v0.
+VKP_FN vec3 primEdge2(GpuPrim p) {
+    vec3 e = vec3(p.p2.x, p.p2.y, p.p2.z);
+    return (primKind(p) == PRIM_TRIANGLE) ? e - vec3(p.p0.x, p.p0.y, p.p0.z) : e;
+}
+
 /// Any packed primitive. ab receives the surface parameters of the hit (quads, triangles; (0,0)
 /// for spheres).
 VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OUT(vec2) ab) {
@@ -140,19 +147,21 @@ VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OU
     }
     if (VKP_HAS_PARALLELOGRAMS && kind != PRIM_SPHERE) {
         vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
-        vec3 e1 = vec3(p.p1.x, p.p1.y, p.p1.z);
-        vec3 e2 = vec3(p.p2.x, p.p2.y, p.p2.z);
+        vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
+        vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
         if (kind == PRIM_TRIANGLE) {
-            // GpuPrim stores edges: v0 + e1 reproduces v1 exactly only when the subtraction
-            // v1 - v0 was exact, so neighbours may disagree on a shared vertex by an ulp.
+            // The three vertices are stored as given, so neighbours that share a vertex test the
+            // bit-identical point and the watertight test keeps its guarantee through the BVH.
             // Zero-area triangles are never hit (scenes/README.md: edges parallel to within 1e-6
             // radians, |e1 x e2| <= 1e-6 |e1| |e2|, as the loader decides it); primNormal could not
             // normalise their normal. Also catches a normal whose square underflows.
+            vec3 e1 = p1 - p0;
+            vec3 e2 = p2 - p0;
             vec3 n = cross(e1, e2);
-            t = intersectTriangleWatertight(p0, p0 + e1, p0 + e2, o, d, tmin, tmax, ab);
+            t = intersectTriangleWatertight(p0, p1, p2, o, d, tmin, tmax, ab);
             if (!(dot(n, n) > (1.0e-12f * dot(e1, e1)) * dot(e2, e2)) || !(dot(n, n) > 0.0f)) t = VKP_FAR;
         } else {
-            t = intersectParallelogram(p0, e1, e2, false, o, d, tmin, tmax, ab);
+            t = intersectParallelogram(p0, p1, p2, false, o, d, tmin, tmax, ab);
         }
     }
     return t;
@@ -171,14 +180,14 @@ VKP_FN vec3 primHitPoint(GpuPrim p, vec3 o, vec3 d, float t, vec2 ab) {
         float len = length(f);
         return (len > 0.0f) ? p0 + f * (p.p1.w / len) : x;
     }
-    return p0 + ab.x * vec3(p.p1.x, p.p1.y, p.p1.z) + ab.y * vec3(p.p2.x, p.p2.y, p.p2.z);
+    return p0 + ab.x * primEdge1(p) + ab.y * primEdge2(p);
 }
 
 /// Geometric normal (unit, the primitive's front side: outward for spheres, e1 x e2 otherwise)
 /// at hit point x.
 VKP_FN vec3 primNormal(GpuPrim p, vec3 x) {
     if (primKind(p) == PRIM_SPHERE) return (x - vec3(p.p0.x, p.p0.y, p.p0.z)) / p.p1.w;
-    return normalize(cross(vec3(p.p1.x, p.p1.y, p.p1.z), vec3(p.p2.x, p.p2.y, p.p2.z)));
+    return normalize(cross(primEdge1(p), primEdge2(p)));
 }
 
 /// 1/x for the slab test: +-infinity when |x| <= 1e-20 (the sign of x; +inf for +-0), so the result

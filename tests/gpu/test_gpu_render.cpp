@@ -48,6 +48,38 @@ TEST(GpuRender, WhiteFurnaceConvexSphereEqualsAlbedo) {
     }
 }
 
+// Pixel sums are compensated (shared/compensated_sum.h): a pixel that sees a constant 0.1 (not a
+// float) keeps its mean to ~1e-10 relative after 2^16 samples, where a float32 running sum drifts
+// by ~1e-4 (computed below for the same values, to show the tolerance would catch it).
+// Deterministic: every sample is exactly float(0.1), no randomness reaches the sums.
+TEST(GpuRender, ConstantPixelMeanDoesNotDriftAtHighSpp) {
+    VKP_REQUIRE_DEVICE(dev);
+    const auto file = writeScene("constant.json", R"({
+      "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vup": [0, 1, 0], "vfov": 40, "width": 8, "height": 8},
+      "render": {"spp": 1, "max_depth": 4, "background": [0.1, 0.3, 0.7]},
+      "materials": {"m": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}},
+      "objects": [{"type": "sphere", "center": [0, 0, 10], "radius": 1, "material": "m"}]})");
+    constexpr std::uint32_t kSpp = 1u << 16;
+    TestRender r = makeRender(dev, file, 8, 8, Sampler::Bsdf, 4096);
+    r.renderer->addSamples(kSpp);
+    const PixelSums sums = r.renderer->readSums();
+    const float bg[3] = {0.1f, 0.3f, 0.7f};
+    constexpr double kTol = 1e-8;  // relative; the double-float pair errs by <= ~n eps^2 = 2.3e-10
+    for (int c = 0; c < 3; ++c) {
+        float naive = 0.0f;
+        for (std::uint32_t i = 0; i < kSpp; ++i) naive += bg[c];
+        const double naiveErr = std::abs(double(naive) / kSpp / double(bg[c]) - 1.0);
+        EXPECT_GT(naiveErr, 100 * kTol) << "a float32 sum would not drift: the test has no teeth";
+        for (std::size_t i = 0; i < 64; ++i) {
+            ASSERT_EQ(sums.sum[4 * i + 3], double(kSpp));
+            EXPECT_NEAR(sums.sum[4 * i + c] / kSpp / double(bg[c]), 1.0, kTol) << "pixel " << i << " channel " << c;
+            const double sq = double(bg[c]) * double(bg[c]);
+            EXPECT_NEAR(sums.sumSq[4 * i + c] / kSpp / sq, 1.0, 1e-6) << "pixel " << i << " channel " << c;
+        }
+        std::printf("channel %d: float32 running sum would be off by %.2e relative\n", c, naiveErr);
+    }
+}
+
 // The same seed, spp and device give the same bits however samples are split into dispatches
 // and submissions (RNG keyed by pixel, sample index, seed; sums added in sample order).
 TEST(GpuRender, BitIdenticalAcrossDispatchSplits) {
@@ -63,9 +95,9 @@ TEST(GpuRender, BitIdenticalAcrossDispatchSplits) {
     c.renderer->addSamples(5);
     const PixelSums sa = a.renderer->readSums(), sb = b.renderer->readSums(), sc = c.renderer->readSums();
     ASSERT_EQ(sa.sum.size(), sb.sum.size());
-    EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(float)));
-    EXPECT_EQ(0, std::memcmp(sa.sum.data(), sc.sum.data(), sa.sum.size() * sizeof(float)));
-    EXPECT_EQ(0, std::memcmp(sa.sumSq.data(), sc.sumSq.data(), sa.sumSq.size() * sizeof(float)));
+    EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(double)));
+    EXPECT_EQ(0, std::memcmp(sa.sum.data(), sc.sum.data(), sa.sum.size() * sizeof(double)));
+    EXPECT_EQ(0, std::memcmp(sa.sumSq.data(), sc.sumSq.data(), sa.sumSq.size() * sizeof(double)));
 }
 
 /// Mean and variance-of-mean of square blocks of pixels, per channel.
@@ -158,7 +190,7 @@ TEST(GpuRender, SceneVariantMatchesFullVariant) {
         variant.addSamples(4);
         full.addSamples(4);
         const PixelSums a = variant.readSums(), b = full.readSums();
-        EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(float))) << name;
+        EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double))) << name;
     }
 }
 
