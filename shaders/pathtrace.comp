@@ -195,17 +195,36 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
 void main() {
     // Scrambled tile order: lavapipe hands each thread a contiguous run of workgroups, so a
     // permutation that spreads each run over the image balances cheap and expensive regions.
-    uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
-    uint tile = (group * frame.tiles.z) % frame.tiles.y;  // host keeps the product below 2^32
-    uvec2 pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * 8u + gl_LocalInvocationID.xy;
     uint width = frame.size.x;
-    if (pix.x >= width || pix.y >= frame.size.y) return;
-    uint pixel = pix.y * width + pix.x;
+    bool adaptive = push.adaptive.x != 0u;
+    uvec2 pix;
+    uint pixel;
+    if (!adaptive) {
+        uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
+        uint tile = (group * frame.tiles.z) % frame.tiles.y;  // host keeps the product below 2^32
+        pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * 8u + gl_LocalInvocationID.xy;
+        if (pix.x >= width || pix.y >= frame.size.y) return;
+        pixel = pix.y * width + pix.x;
+    } else {
+        // Only the pixels still active, packed: no lane idles on a converged pixel.
+        uint group = gl_WorkGroupID.y * push.adaptive.w + gl_WorkGroupID.x;
+        if (group >= push.adaptive.y) return;
+        uint slot = ((group * push.adaptive.z) % push.adaptive.y) * 64u + gl_LocalInvocationIndex;
+        if (slot >= push.adaptive.x) return;
+        pixel = activePixels[slot];
+        pix = uvec2(pixel % width, pixel / width);
+    }
 
     vec4 sum = accumSum[2u * pixel];
     vec4 sumLo = accumSum[2u * pixel + 1u];
     vec4 sq = accumSq[2u * pixel];
     vec4 sqLo = accumSq[2u * pixel + 1u];
+    vec4 dSum = vec4(0.0f);
+    vec4 dSq = vec4(0.0f);
+    if (adaptive) {
+        dSum = decisionSums[2u * pixel];
+        dSq = decisionSums[2u * pixel + 1u];
+    }
     uint rays = 0u;
     uint nonfinite = 0u;
     uint cut = 0u;
@@ -224,6 +243,9 @@ void main() {
             vec3 L = s.radiance;
             if (any(isnan(L)) || any(isinf(L))) {
                 nonfinite++;
+            } else if (adaptive && ((push.batch.x + k) & 3u) == 3u) {
+                dSum += vec4(L, 1.0f);  // decision stream: steers adaptive sampling, not in the image
+                dSq += vec4(L * L, 0.0f);
             } else {
                 addCompensated(sum, sumLo, vec4(L, 1.0f));
                 addCompensated(sq, sqLo, vec4(L * L, 0.0f));
@@ -236,6 +258,10 @@ void main() {
     accumSum[2u * pixel + 1u] = sumLo;
     accumSq[2u * pixel] = sq;
     accumSq[2u * pixel + 1u] = sqLo;
+    if (adaptive) {
+        decisionSums[2u * pixel] = dSum;
+        decisionSums[2u * pixel + 1u] = dSq;
+    }
 
     uint old = atomicAdd(counters[COUNTER_RAYS_LO], rays);
     if (old + rays < old) atomicAdd(counters[COUNTER_RAYS_HI], 1u);

@@ -14,6 +14,6 @@ if [ -z "${VKPATH:-}" ]; then
   echo "bench: cmake --preset release && cmake --build --preset release --target vkpath"
   cmake --preset release >/dev/null
   cmake --build --preset release --target vkpath
-  VKPATH="$root/build/release/host/vkpath"
+  VKPATH="$root/build/release/vkpath"
 fi
 exec /usr/bin/python3 "$root/tools/bench/bench.py" --vkpath "$VKPATH" "$@"

@@ -53,6 +53,10 @@ render options:
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
   --dump-format F         also dump exr or pfm (repeatable)
   --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
+  --adaptive T            adaptive sampling: a pixel stops once its estimated relative standard error
+                          (that of relMSE's (x-y)^2/(y^2+0.01)) is <= T, e.g. 0.02; unbiased: a quarter
+                          of the samples only decide (README "Adaptive sampling"); --spp is the maximum
+  --adaptive-min-spp N    samples every pixel gets before the first decision (default 64)
   --reference REF         .exr/.pfm/.hdr of the same size: print the final error against it
   --error-log LOG.csv     with --reference: a row spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
                           at every dump (or, without --dump-every, at 1,2,4,8,... spp) and at the end
@@ -121,6 +125,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 else if (v == "hdr") a.dumpFormats.push_back(ImageFormat::Hdr);
                 else if (v != "png") usage("--dump-format must be exr, pfm, hdr or png, got '" + v + "'");
             } else if (f == "--samples-per-dispatch") a.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            else if (f == "--adaptive") a.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
+            else if (f == "--adaptive-min-spp") a.adaptiveMinSpp = parseUint(f, value(f), 8, 1u << 24);
             else if (f == "--reference") a.reference = fileValue(f);
             else if (f == "--error-log") a.errorLog = fileValue(f);
             else if (f == "--stats-json") a.statsJson = fileValue(f);

@@ -29,6 +29,8 @@ struct CliArgs {
     std::vector<ImageFormat> dumpFormats{ImageFormat::Png};
     bool quiet = false;
     std::uint32_t samplesPerDispatch = 0;        // 0: automatic
+    double adaptiveThreshold = 0.0;              // --adaptive T (0: off)
+    std::uint32_t adaptiveMinSpp = 64;           // --adaptive-min-spp N
     std::filesystem::path reference;             ///< --reference: image to measure the error against
     std::filesystem::path errorLog;              ///< --error-log: CSV of the error (needs --reference)
     std::filesystem::path statsJson;             ///< --stats-json: the run's numbers

@@ -84,6 +84,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     ro.sampler = a.sampler;
     ro.fullVariant = a.fullVariant;
     ro.samplesPerDispatch = a.samplesPerDispatch;
+    ro.adaptiveThreshold = a.adaptiveThreshold;
+    ro.adaptiveMinSpp = a.adaptiveMinSpp;
     t = Clock::now();
     Renderer renderer(device, scene, bvh, ro);
     st.secondsUpload = since(t);
@@ -113,13 +115,17 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     }
     const SessionResult r = runSession(renderer, so, processStart);
 
-    const double samples = double(r.spp) * double(r.pixels);
+    const double samples = double(r.samplesTaken);
     const double rs = std::max(r.renderSeconds, 1e-9);
     std::fprintf(stderr,
                  "vkpath: %u spp in %.2f s (rendering %.2f s, first sample %.2f s): %.3f M samples/s, %.3f M rays/s, "
                  "%llu non-finite samples dropped\n",
                  r.spp, r.seconds, r.renderSeconds, r.firstBatchSeconds, samples / rs / 1e6, double(r.counters.rays) / rs / 1e6,
                  static_cast<unsigned long long>(r.counters.nonfinite));
+    if (renderer.adaptive())
+        std::fprintf(stderr, "vkpath: adaptive sampling: %.1f samples per pixel on average, %u of %llu pixels still active\n",
+                     double(r.samplesTaken) / double(std::max<std::uint64_t>(r.pixels, 1)), r.activePixels,
+                     static_cast<unsigned long long>(r.pixels));
     if (r.counters.loopGuard)
         std::fprintf(stderr, "vkpath: warning: %llu paths were cut short by the loop guard\n",
                      static_cast<unsigned long long>(r.counters.loopGuard));
@@ -141,6 +147,9 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.seed = scene.render.seed;
         st.samplesPerDispatch = a.samplesPerDispatch;
         st.spp = r.spp;
+        st.samplesTaken = r.samplesTaken;
+        st.adaptiveThreshold = a.adaptiveThreshold;
+        st.activePixels = r.activePixels;
         st.sppRequested = scene.render.spp;
         st.timeLimit = a.timeLimit;
         st.rays = r.counters.rays;

@@ -6,6 +6,7 @@
 #include "bvh/flatten.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
+#include "render/adaptive.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
 #include "vk/buffer.h"
@@ -24,6 +25,8 @@ enum : std::uint32_t {
     kBindingSum,
     kBindingSumSq,
     kBindingCounters,
+    kBindingDecision,
+    kBindingActive,
 };
 
 template <class T>
@@ -58,7 +61,7 @@ Image PixelSums::varianceOfMean() const {
 }
 
 struct Renderer::Impl {
-    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters;
+    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, decision, active;
     vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
     std::unique_ptr<ComputePipeline> pipeline;
 };
@@ -70,7 +73,10 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       width_(scene.camera.width),
       height_(scene.camera.height),
       spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1),
-      autoSpd_(options.samplesPerDispatch == 0) {
+      autoSpd_(options.samplesPerDispatch == 0),
+      active_(scene.camera.width * scene.camera.height),
+      adaptiveThreshold_(options.adaptiveThreshold),
+      adaptiveMinSpp_(options.adaptiveMinSpp) {
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
@@ -95,7 +101,17 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->sum = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
     impl_->sumSq = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
     impl_->counters = std::make_unique<GpuBuffer>(device, gpu::COUNTER_COUNT * 4, vk::BufferUsageFlagBits::eStorageBuffer);
+    // Adaptive sampling: decision-stream sums and the active-pixel list (a token size when off).
+    const std::size_t pixels = std::size_t(width_) * height_;
+    impl_->decision = std::make_unique<GpuBuffer>(device, adaptive() ? pixelBytes : 16, vk::BufferUsageFlagBits::eStorageBuffer);
+    impl_->active = std::make_unique<GpuBuffer>(device, adaptive() ? pixels * 4 : 16, vk::BufferUsageFlagBits::eStorageBuffer);
+    if (adaptive()) {
+        activeMask_.assign(pixels, 1);
+        const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_);
+        impl_->active->upload(list.data(), list.size() * 4);
+    }
     device.submitAndWait([&](vk::raii::CommandBuffer& cmd) {
+        cmd.fillBuffer(impl_->decision->buffer(), 0, VK_WHOLE_SIZE, 0);
         cmd.fillBuffer(impl_->sum->buffer(), 0, VK_WHOLE_SIZE, 0);
         cmd.fillBuffer(impl_->sumSq->buffer(), 0, VK_WHOLE_SIZE, 0);
         cmd.fillBuffer(impl_->counters->buffer(), 0, VK_WHOLE_SIZE, 0);
@@ -106,6 +122,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     desc.bindings = {vk::DescriptorType::eUniformBuffer,      vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer,
+                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
                      vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer};
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
@@ -119,13 +136,37 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     p.bindBuffer(kBindingSum, impl_->sum->buffer());
     p.bindBuffer(kBindingSumSq, impl_->sumSq->buffer());
     p.bindBuffer(kBindingCounters, impl_->counters->buffer());
+    p.bindBuffer(kBindingDecision, impl_->decision->buffer());
+    p.bindBuffer(kBindingActive, impl_->active->buffer());
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 
 Renderer::~Renderer() = default;
 
 void Renderer::addSamples(std::uint32_t count) {
-    if (count == 0) return;
+    // Adaptive decisions are taken at fixed sample counts (adaptiveMinSpp, then every
+    // kAdaptiveStep), never where a caller's batch happens to end, so the image does not depend on
+    // how the samples were split into calls.
+    while (count > 0 && active_ > 0) {
+        std::uint32_t n = count;
+        if (adaptive()) {
+            const std::uint32_t next = done_ < adaptiveMinSpp_
+                                           ? adaptiveMinSpp_
+                                           : adaptiveMinSpp_ + ((done_ - adaptiveMinSpp_) / kAdaptiveStep + 1) * kAdaptiveStep;
+            n = std::min(n, next - done_);
+        }
+        submitSamples(n);
+        count -= n;
+        if (adaptive() && done_ >= adaptiveMinSpp_ && (done_ - adaptiveMinSpp_) % kAdaptiveStep == 0) updateAdaptive();
+    }
+}
+
+void Renderer::submitSamples(std::uint32_t count) {
+    // With adaptive sampling: 1D list of the active pixels, 64 per workgroup, slots scrambled.
+    const std::uint32_t groups = (active_ + 63) / 64;
+    const std::uint32_t groupsX = std::min<std::uint32_t>(groups, 4096);
+    const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
+    const glm::uvec4 adaptivePush = adaptive() ? glm::uvec4(active_, groups, tileStride(groups), groupsX) : glm::uvec4(0);
     try {
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
             cmd.fillBuffer(impl_->counters->buffer(), gpu::COUNTER_MAX_PASSES * 4, 4, 0);
@@ -137,13 +178,18 @@ void Renderer::addSamples(std::uint32_t count) {
             for (std::uint32_t s = 0; s < count; s += spd_) {
                 gpu::GpuPush push{};
                 push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
-                impl_->pipeline->recordDispatch8x8(cmd, width_, height_, &push, sizeof(push));
+                push.adaptive = adaptivePush;
+                if (adaptive())
+                    impl_->pipeline->recordDispatch(cmd, groupsX, groupsY, &push, sizeof(push));
+                else
+                    impl_->pipeline->recordDispatch8x8(cmd, width_, height_, &push, sizeof(push));
             }
         });
     } catch (const vk::SystemError& e) {
         throw VulkanError(std::string("rendering failed: ") + e.what());
     }
     done_ += count;
+    taken_ += std::uint64_t(count) * active_;
     dev_->instance().throwIfValidationMessages("while rendering");
     std::uint32_t raw[gpu::COUNTER_COUNT];
     impl_->counters->download(raw, sizeof(raw));
@@ -156,6 +202,17 @@ void Renderer::addSamples(std::uint32_t count) {
         const double perSample = double(std::max<std::uint32_t>(maxPasses_, 1)) / perDispatch;
         const auto fit = std::uint32_t(std::clamp(kTargetPasses / perSample, 1.0, 8.0));
         spd_ = std::clamp<std::uint32_t>(fit, 1, 2 * spd_);
+    }
+}
+
+void Renderer::updateAdaptive() {
+    std::vector<float> decision(std::size_t(width_) * height_ * 8);
+    impl_->decision->download(decision.data(), decision.size() * sizeof(float));
+    const std::uint32_t before = active_;
+    active_ = updateActivePixels(activeMask_, decision, width_, height_, adaptiveThreshold_, done_);
+    if (active_ != before && active_ > 0) {
+        const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_);
+        impl_->active->upload(list.data(), list.size() * 4);
     }
 }
 

@@ -20,6 +20,11 @@ struct RendererOptions {
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;
+    /// Adaptive sampling (render/adaptive.h): a pixel stops receiving samples once its estimated
+    /// relative standard error is <= this (0 = off: every pixel gets every sample).
+    double adaptiveThreshold = 0.0;
+    /// Samples every pixel receives before the first adaptive decision.
+    std::uint32_t adaptiveMinSpp = 64;
 };
 
 /// Totals since the render began.
@@ -48,10 +53,22 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    /// Adds samples [samplesDone(), samplesDone() + count) to every pixel, in one submission, and
-    /// waits for it. Throws VulkanError on a device failure or a validation message.
+    /// Adds samples [samplesDone(), samplesDone() + count) to every active pixel (every pixel unless
+    /// adaptive sampling is on), in one submission, and waits for it; then, with adaptive sampling,
+    /// stops the pixels that have converged. Throws VulkanError on a device failure or a validation
+    /// message.
     void addSamples(std::uint32_t count);
+    /// Sample indices every active pixel has had (the spp of an image without adaptive sampling).
     std::uint32_t samplesDone() const { return done_; }
+    /// Samples taken over all pixels (with adaptive sampling, the decision stream's included).
+    std::uint64_t samplesTaken() const { return taken_; }
+    /// Pixels still receiving samples (all of them unless adaptive sampling is on).
+    std::uint32_t activePixels() const { return active_; }
+    bool adaptive() const { return adaptiveThreshold_ > 0.0; }
+    /// Adaptive sampling: one byte per pixel, 1 = still receiving samples.
+    const std::vector<std::uint8_t>& activeMask() const { return activeMask_; }
+    /// Adaptive decisions happen at adaptiveMinSpp spp and then every kAdaptiveStep spp.
+    static constexpr std::uint32_t kAdaptiveStep = 16;
     /// Samples per pixel that the next dispatch adds.
     std::uint32_t samplesPerDispatch() const { return spd_; }
     /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
@@ -71,6 +88,13 @@ private:
     bool autoSpd_;
     std::uint32_t done_ = 0;
     std::uint32_t maxPasses_ = 0;
+    std::uint64_t taken_ = 0;
+    std::uint32_t active_ = 0;
+    double adaptiveThreshold_ = 0.0;
+    std::uint32_t adaptiveMinSpp_ = 0;
+    std::vector<std::uint8_t> activeMask_;
+    void submitSamples(std::uint32_t count);
+    void updateAdaptive();
 };
 
 }  // namespace vkp

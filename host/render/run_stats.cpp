@@ -74,6 +74,9 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("time_limit", num(s.timeLimit));
     w.raw("spp", num(std::uint64_t(s.spp)));
     w.raw("samples", num(s.samples()));
+    w.raw("mean_spp", num(s.pixels() ? double(s.samples()) / double(s.pixels()) : 0.0));
+    w.raw("adaptive_threshold", num(s.adaptiveThreshold));
+    w.raw("active_pixels", num(std::uint64_t(s.activePixels)));
     w.raw("rays", num(s.rays));
     w.raw("rays_first_batch", num(s.firstBatchRays));
     w.raw("nonfinite_samples", num(s.nonfinite));

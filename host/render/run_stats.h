@@ -43,8 +43,14 @@ struct RunStats {
     std::optional<ErrorMetrics> error;
     std::string reference;
 
+    /// Adaptive sampling: the threshold (0 = off) and the pixels still active at the end.
+    double adaptiveThreshold = 0.0;
+    std::uint32_t activePixels = 0;
+    /// Samples taken over all pixels (counted by the renderer; spp x pixels without adaptive sampling).
+    std::uint64_t samplesTaken = 0;
+
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }
-    std::uint64_t samples() const { return pixels() * spp; }
+    std::uint64_t samples() const { return samplesTaken ? samplesTaken : pixels() * spp; }
 };
 
 /// The stats as a JSON object (pretty-printed, keys in a fixed order, non-finite numbers as null).

@@ -111,7 +111,8 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     double perSample = 0.0;  // seconds per spp, measured
     int batches = 0;
     constexpr double kBatchSeconds = 0.5;  // aim for a submit this long: progress stays live
-    while (renderer.samplesDone() < o.spp) {
+    // With adaptive sampling the render also ends when every pixel has converged.
+    while (renderer.samplesDone() < o.spp && renderer.activePixels() > 0) {
         const std::uint32_t done = renderer.samplesDone();
         std::uint32_t n = 1;  // the first batch is one sample: time to first pixel, JIT included
         if (perSample > 0.0) n = std::uint32_t(std::clamp(kBatchSeconds / perSample, 1.0, 256.0));
@@ -141,7 +142,8 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         const RenderCounters c = renderer.counters();
         if (done == 0) res.firstBatchRays = c.rays;
         const double eta = double(o.spp - now) * perSample;
-        progress.update(now, res.renderSeconds, double(now) * pixels, double(c.rays), eta, now == o.spp);
+        progress.update(now, res.renderSeconds, double(renderer.samplesTaken()), double(c.rays), eta,
+                        now == o.spp || renderer.activePixels() == 0);
         if (now < o.spp) {
             const bool dump = o.dumpEvery && now % o.dumpEvery == 0;
             const bool power = powersOfTwo && (now & (now - 1)) == 0;
@@ -163,6 +165,8 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     writeAll(img, o.outputs, o.exposure);
     res.outputSeconds += secondsSince(t1);
     res.spp = renderer.samplesDone();
+    res.samplesTaken = renderer.samplesTaken();
+    res.activePixels = renderer.activePixels();
     res.counters = renderer.counters();
     res.seconds = secondsSince(processStart);
     return res;

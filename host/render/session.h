@@ -49,6 +49,8 @@ struct SessionResult {
     double outputSeconds = 0.0;      ///< time spent writing dumps and the final images (s)
     RenderCounters counters;
     std::uint64_t pixels = 0;
+    std::uint64_t samplesTaken = 0;  ///< over all pixels (Renderer::samplesTaken)
+    std::uint32_t activePixels = 0;  ///< still active at the end (all unless adaptive sampling is on)
 };
 
 /// Runs the render. `processStart` is when the process started (the time limit counts from it).

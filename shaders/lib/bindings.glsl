@@ -37,6 +37,9 @@ layout(set = 0, binding = 4) uniform usamplerBuffer uLights;
 layout(set = 0, binding = 5, std430) buffer AccumSum { vec4 accumSum[]; };
 layout(set = 0, binding = 6, std430) buffer AccumSq { vec4 accumSq[]; };
 layout(set = 0, binding = 7, std430) buffer Counters { uint counters[]; };
+// Adaptive sampling (host/render/adaptive.h): [2i], [2i+1] = pixel i's decision-stream sums.
+layout(set = 0, binding = 8, std430) buffer DecisionSums { vec4 decisionSums[]; };
+layout(set = 0, binding = 9, std430) readonly buffer ActivePixels { uint activePixels[]; };
 layout(push_constant) uniform PushBlock { GpuPush push; };
 
 vec4 fetchF(usamplerBuffer b, int i) { return uintBitsToFloat(texelFetch(b, i)); }

@@ -86,12 +86,20 @@ struct GpuFrame {
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel.
+// With adaptive sampling (host/render/adaptive.h) a dispatch covers only the active pixels, listed
+// in the active-pixel buffer: workgroup g (= y * adaptive.w + x) takes the 64 list entries of slot
+// (g * adaptive.z) mod adaptive.y, so lavapipe's per-thread runs of workgroups spread over the image.
 struct GpuPush {
-    uvec4 batch;  // x: sampleStart, y: sampleCount, z, w: reserved
+    uvec4 batch;     // x: sampleStart, y: sampleCount, z, w: reserved
+    uvec4 adaptive;  // x: active pixels listed (0: adaptive sampling off, every pixel, frame.tiles),
+                     // y: workgroups with work, z: slot stride (coprime with y, y * z < 2^32),
+                     // w: workgroups per row of the dispatch
 };
 
 // Accumulation (SSBO, written by the kernel): per pixel, sum.rgb and the number of finite samples
-// in sum.w; sumSq.rgb the per-channel sum of squares (for variance estimates).
+// in sum.w; sumSq.rgb the per-channel sum of squares (for variance estimates); each a double-float
+// pair (shaders/lib/bindings.glsl). Decision stream of adaptive sampling (SSBO): per pixel, RGB sum
+// and count, then RGB sum of squares, of the samples that only steer (host/render/adaptive.h).
 // Counters (SSBO): see COUNTER_* indices.
 const uint COUNTER_NONFINITE = 0u;   // samples dropped because they were NaN or Inf
 const uint COUNTER_RAYS_LO = 1u;     // rays traced (64-bit, low word)

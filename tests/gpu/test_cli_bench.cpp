@@ -199,5 +199,26 @@ TEST_F(CliBench, StatsJsonWithTimeLimit) {
     EXPECT_LT(j["seconds_total"].get<double>(), 10.0);  // generous: the machine may be loaded
 }
 
+// --adaptive: the render stops when every pixel has converged (a loose threshold on a tiny image),
+// and the stats count the samples actually taken.
+TEST_F(CliBench, AdaptiveStopsWhenEveryPixelConverged) {
+    VKP_REQUIRE_DEVICE(dev);
+    removeAll({"st.json"});
+    const ProcessResult r = run({"render", scene("cornell-classic.json"), "--validate", "--spp", "100000", "--width", "16",
+                                 "--height", "16", "--adaptive", "0.2", "--adaptive-min-spp", "32", "--stats-json",
+                                 "st.json", "-o", "out.png", "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream f(dir / "st.json");
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_EQ(j["active_pixels"], 0);
+    EXPECT_EQ(j["adaptive_threshold"], 0.2);
+    EXPECT_LT(j["spp"].get<double>(), 100000);
+    EXPECT_GE(j["mean_spp"].get<double>(), 32);
+    EXPECT_LE(j["mean_spp"].get<double>(), j["spp"].get<double>());
+    EXPECT_NEAR(j["samples"].get<double>(), j["mean_spp"].get<double>() * 256, 1e-3);
+    const ProcessResult bad = run({"render", scene("cornell-classic.json"), "--adaptive", "-1", "-o", "x.png"});
+    EXPECT_EQ(bad.exitCode, 1);
+}
+
 }  // namespace
 }  // namespace vkp::test

@@ -8,8 +8,9 @@
 // k pixels with independent samples. A z-test compares |mean - expected| with
 //     z_crit * sqrt(var) + (n - 1) 2^-24 |expected|,
 // where the second term is the worst-case relative error of a sequential float sum of n terms
-// (Higham, "Accuracy and Stability of Numerical Algorithms", sec. 4.2): the device adds samples to
-// float32 sums, which matters only for pixels whose samples are all equal (zero variance).
+// (Higham, "Accuracy and Stability of Numerical Algorithms", sec. 4.2), kept as a generous bound
+// for pixels whose samples are all equal (zero variance) although the device's sums are now
+// double-float pairs (shaders/shared/compensated_sum.h) and err far less.
 // z_crit comes from a suite budget: a test executable declares that it performs at most B z-tests
 // at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B) (Sidak 1967:
 // for jointly normal statistics, correlated or not, the family-wise false-failure probability is

@@ -10,7 +10,7 @@ For each scene (cornell-book3, cornell-classic, spheres-book1 and a generated de
   4. compares LP_NUM_THREADS=1 with 2, and --variant auto with --variant full (steady samples/s);
 and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
 
-Usage: bench.py [--quick] --vkpath BUILD/host/vkpath [--out DIR] [--cache DIR] [--scenes a,b]
+Usage: bench.py [--quick] --vkpath BUILD/vkpath [--out DIR] [--cache DIR] [--scenes a,b]
                 [--refresh-references] [--ref-budget S] [--curve-seconds S]
 Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
 python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
@@ -191,7 +191,7 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small sizes and short runs (a few minutes)")
-    ap.add_argument("--vkpath", default=str(ROOT / "build/release/host/vkpath"), help="the vkpath binary")
+    ap.add_argument("--vkpath", default=str(ROOT / "build/release/vkpath"), help="the vkpath binary")
     ap.add_argument("--out", help="results folder (default: build/bench-results/<mode>-<date> in the repository)")
     ap.add_argument("--cache", default=str(ROOT / "build/bench-cache"),
                     help="references, generated scenes and the warm Mesa shader cache")
