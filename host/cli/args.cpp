@@ -42,6 +42,7 @@ render options:
   --time SECONDS          stop after this much wall time (whichever of --spp/--time comes first)
   --width N, --height N   image size (override the scene)
   --max-depth N           path length cap      --seed N   random seed
+  --rr-depth N            Russian roulette from the Nth ray of a path on (default: the scene's, 3)
   --sampler S             bsdf | light | mixture (the book's) | mis (default)
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
@@ -107,6 +108,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--width") a.width = parseUint(f, value(f), 1, 16384);
             else if (f == "--height") a.height = parseUint(f, value(f), 1, 16384);
             else if (f == "--max-depth") a.maxDepth = parseUint(f, value(f), 1, 1024);
+            else if (f == "--rr-depth") a.rouletteDepth = parseUint(f, value(f), 1, 1024);
             else if (f == "--seed") a.seed = parseUint(f, value(f), 0, 0xffffffffu);
             else if (f == "--sampler") {
                 const std::string s = value(f);

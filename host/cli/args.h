@@ -18,6 +18,7 @@ struct CliArgs {
     std::filesystem::path scene;
     std::vector<std::filesystem::path> outputs;  // -o, repeatable
     std::optional<std::uint32_t> spp, width, height, maxDepth, seed;
+    std::optional<std::uint32_t> rouletteDepth;  // --rr-depth
     double timeLimit = 0.0;                      // --time SECONDS (0: none)
     Sampler sampler = Sampler::Mis;
     bool fullVariant = false;                    // --variant full

@@ -47,6 +47,7 @@ Scene loadWithOverrides(const CliArgs& a) {
     if (a.width) s.camera.width = *a.width;
     if (a.height) s.camera.height = *a.height;
     if (a.maxDepth) s.render.maxDepth = *a.maxDepth;
+    if (a.rouletteDepth) s.render.rouletteDepth = *a.rouletteDepth;
     if (a.seed) s.render.seed = *a.seed;
     return s;
 }

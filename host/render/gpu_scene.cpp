@@ -53,8 +53,7 @@ gpu::GpuFrame packFrame(const Scene& scene) {
     packCamera(scene.camera, f);
     f.background = v4(scene.render.background);
     f.size = glm::uvec4(scene.camera.width, scene.camera.height, scene.render.maxDepth, scene.render.seed);
-    constexpr std::uint32_t kRouletteStart = 3;  // bounces before Russian roulette may end a path
-    f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), kRouletteStart, emittingLightCount(scene), 0);
+    f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), scene.render.rouletteDepth, emittingLightCount(scene), 0);
     const std::uint32_t groupsX = (scene.camera.width + 7) / 8, groupsY = (scene.camera.height + 7) / 8;
     f.tiles = glm::uvec4(groupsX, groupsX * groupsY, tileStride(groupsX * groupsY), 0);
     return f;

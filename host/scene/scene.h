@@ -140,6 +140,8 @@ struct Camera {
 struct RenderSettings {
     std::uint32_t spp = 64;
     std::uint32_t maxDepth = 50;
+    /// Russian roulette may end a path once it has this many rays (camera ray included); below, never.
+    std::uint32_t rouletteDepth = 3;
     glm::vec3 background{0.0f};  ///< radiance of escaping rays (linear RGB)
     std::uint32_t seed = 0;
 };

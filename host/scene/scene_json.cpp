@@ -51,6 +51,7 @@ RenderSettings readRender(const json::Value& v) {
     RenderSettings r;
     r.spp = o.uint32("spp", 1, kMaxSpp, 64);
     r.maxDepth = o.uint32("max_depth", 1, kMaxDepth, 50);
+    r.rouletteDepth = o.uint32("roulette_depth", 1, kMaxDepth, 3);
     r.background = o.vec3("background", Range::atLeast(0.0), glm::vec3(0.0f));
     r.seed = o.uint32("seed", 0, std::numeric_limits<std::uint32_t>::max(), 0);
     o.finish();

@@ -22,7 +22,8 @@ TEST(CliArgs, RenderWithEveryFlag) {
     const CliArgs a = parse({"render", "s.json", "-o", "a.png", "-o", "b.exr", "--spp", "16", "--time", "2.5", "--width", "64",
                              "--height", "32", "--max-depth", "7", "--seed", "9", "--sampler", "light", "--variant", "full",
                              "--device", "llvm", "--validate", "--exposure", "-1", "--dump-every", "4", "--dump-dir", "d",
-                             "--dump-format", "exr", "--quiet", "--samples-per-dispatch", "2"});
+                             "--dump-format", "exr", "--quiet", "--samples-per-dispatch", "2", "--rr-depth", "5",
+                             "--adaptive", "0.03", "--adaptive-min-spp", "32"});
     EXPECT_EQ(a.command, Command::Render);
     EXPECT_EQ(a.scene, "s.json");
     ASSERT_EQ(a.outputs.size(), 2u);
@@ -43,6 +44,9 @@ TEST(CliArgs, RenderWithEveryFlag) {
     EXPECT_EQ(a.dumpFormats[1], ImageFormat::Exr);
     EXPECT_TRUE(a.quiet);
     EXPECT_EQ(a.samplesPerDispatch, 2u);
+    EXPECT_EQ(*a.rouletteDepth, 5u);
+    EXPECT_DOUBLE_EQ(a.adaptiveThreshold, 0.03);
+    EXPECT_EQ(a.adaptiveMinSpp, 32u);
 }
 
 TEST(CliArgs, DefaultsAndOtherCommands) {

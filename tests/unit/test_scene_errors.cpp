@@ -96,6 +96,7 @@ std::vector<Case> cases() {
         {"render_type", withRender("true"), "/render", "must be an object (got true)"},
         {"spp_zero", withRender(R"({"spp":0})"), "/render/spp", "must be an integer in [1, 16777216] (got 0)"},
         {"max_depth_zero", withRender(R"({"max_depth":0})"), "/render/max_depth", "(got 0)"},
+        {"roulette_depth_zero", withRender(R"({"roulette_depth":0})"), "/render/roulette_depth", "(got 0)"},
         {"seed_negative", withRender(R"({"seed":-1})"), "/render/seed", "must be an integer in [0, 4294967295] (got -1)"},
         {"seed_too_big", withRender(R"({"seed":4294967296})"), "/render/seed", "(got 4294967296)"},
         {"background_negative", withRender(R"({"background":[0,0,-0.5]})"), "/render/background/2", "must be >= 0 (got -0.5)"},

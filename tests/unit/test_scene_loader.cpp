@@ -67,6 +67,7 @@ TEST(SceneLoader, CornellBook3) {
     EXPECT_EQ(s.camera.height, 600u);
     EXPECT_FLOAT_EQ(s.camera.defocusAngle, 0.0f);
     EXPECT_EQ(s.render.maxDepth, 50u);
+    EXPECT_EQ(s.render.rouletteDepth, 3u);
     EXPECT_EQ(s.render.spp, 256u);
     expectNear(s.render.background, {0, 0, 0});
 
