@@ -53,9 +53,29 @@ SCENES = [
 MODES = {
     # curve: seconds of rendering per sampler; scaling: per thread/variant run; ref_budget: seconds
     # for one scene's reference; mesh: the dense-mesh grid (2 * nu * (nv - 1) triangles).
-    "full": dict(curve=60.0, scaling=20.0, ref_budget=2700.0, pilot_spp=16, mesh=(1024, 512), load_timeout=900),
-    "quick": dict(curve=6.0, scaling=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64), load_timeout=120),
+    "full": dict(curve=60.0, scaling=20.0, settings=20.0, ref_budget=2700.0, pilot_spp=16, mesh=(1024, 512),
+                 load_timeout=900),
+    "quick": dict(curve=6.0, scaling=3.0, settings=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64),
+                  load_timeout=120),
 }
+PARTS = ("curves", "scaling", "settings")
+# Equal-time comparisons of one setting against the default (same sampler, same --time): what each
+# knob buys. name -> extra vkpath arguments.
+SETTINGS = [
+    ("default", []),
+    ("adaptive 0.02", ["--adaptive", "0.02"]),
+    ("adaptive 0.05", ["--adaptive", "0.05"]),
+    ("rr-depth 1", ["--rr-depth", "1"]),
+    ("rr-depth 2", ["--rr-depth", "2"]),
+    ("rr-depth 5", ["--rr-depth", "5"]),
+    ("rr-depth 8", ["--rr-depth", "8"]),
+    ("no roulette", ["--rr-depth", "1024"]),
+    ("1 sample/dispatch", ["--samples-per-dispatch", "1"]),
+    ("2 samples/dispatch", ["--samples-per-dispatch", "2"]),
+    ("4 samples/dispatch", ["--samples-per-dispatch", "4"]),
+    ("8 samples/dispatch", ["--samples-per-dispatch", "8"]),
+    ("16 samples/dispatch", ["--samples-per-dispatch", "16"]),
+]
 
 
 def log(msg):
@@ -150,7 +170,7 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     # Curves: one run per sampler; --time counts from process start, so the start-up is added.
     curve_time = (args.curve_seconds or cfg["curve"]) + startup
     curves, samplers, rows_total, ck_seconds, wall = {}, {}, 0, 0.0, 0.0
-    for s in vk.samplers:
+    for s in (vk.samplers if "curves" in args.parts else []):
         logf = os.path.join(runs, "curve-%s.csv" % s)
         st = vk.render(scene, runs, "curve-" + s, wh + ["--sampler", s, "--spp", BIG_SPP, "--time", "%.3f" % curve_time,
                                                         "--reference", ref["path"], "--error-log", logf,
@@ -175,17 +195,44 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
                             (name, s, first["relmse"], first["spp"], last["relmse"], last["spp"]))
     res["samplers"] = samplers
     res["overhead"] = {"rows": rows_total, "seconds": ck_seconds, "wall": wall}
-    # Scaling: threads and variant, default sampler, same time each.
-    t = "%.3f" % ((args.scaling_seconds or cfg["scaling"]) + startup)
-    base = wh + ["--spp", BIG_SPP, "--time", t, "-o", "scaling.pfm"]
-    one = vk.render(scene, runs, "threads-1", base, dict(env, LP_NUM_THREADS=1))
-    two = vk.render(scene, runs, "threads-2", base, dict(env, LP_NUM_THREADS=2))
-    full = vk.render(scene, runs, "variant-full", base + ["--variant", "full"], dict(env, LP_NUM_THREADS=2))
-    res["scaling"] = {"threads_1": steady(one), "threads_2": steady(two), "threads_ratio": steady(two) / steady(one),
-                      "full": steady(full), "variant_ratio": steady(two) / steady(full),
-                      "auto_first_batch": two["seconds_first_batch"], "full_first_batch": full["seconds_first_batch"]}
-    report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
+    if "scaling" in args.parts:
+        # Scaling: threads and variant, default sampler, same time each.
+        t = "%.3f" % ((args.scaling_seconds or cfg["scaling"]) + startup)
+        base = wh + ["--spp", BIG_SPP, "--time", t, "-o", "scaling.pfm"]
+        one = vk.render(scene, runs, "threads-1", base, dict(env, LP_NUM_THREADS=1))
+        two = vk.render(scene, runs, "threads-2", base, dict(env, LP_NUM_THREADS=2))
+        full = vk.render(scene, runs, "variant-full", base + ["--variant", "full"], dict(env, LP_NUM_THREADS=2))
+        res["scaling"] = {"threads_1": steady(one), "threads_2": steady(two),
+                          "threads_ratio": steady(two) / steady(one), "full": steady(full),
+                          "variant_ratio": steady(two) / steady(full), "auto_first_batch": two["seconds_first_batch"],
+                          "full_first_batch": full["seconds_first_batch"]}
+    if "settings" in args.parts:
+        res["settings"] = bench_settings(vk, scene, runs, wh, ref, "%.3f" % ((args.settings_seconds or cfg["settings"])
+                                                                           + startup), env, name, failures)
+    if curves:
+        report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
     return res, curves
+
+
+def bench_settings(vk, scene, runs, wh, ref, seconds, env, name, failures):
+    """Equal-time runs of the default sampler, one per SETTINGS entry: final errors and rates, and each
+    setting's relMSE over the default's (below 1: the setting helps at equal time)."""
+    out = {}
+    for label, extra in SETTINGS:
+        tag = "setting-" + "".join(ch if ch.isalnum() else "-" for ch in label)
+        st = vk.render(scene, runs, tag, wh + ["--spp", BIG_SPP, "--time", seconds, "--reference", ref["path"],
+                                              "-o", tag + ".pfm"] + extra, env)
+        out[label] = {"args": " ".join(str(a) for a in extra), "spp": st["spp"], "mean_spp": st.get("mean_spp"),
+                      "samples_per_second": steady(st), "rays_per_second": st["rays_per_second_steady"],
+                      "relmse": st["error"]["relmse"], "rmse": st["error"]["rmse"],
+                      "ref_limited": ref["floor_relmse"] > LIMITED_FRACTION * st["error"]["relmse"]}
+        for bad in ("nonfinite_samples", "loop_guard_paths"):
+            if st[bad]:
+                failures.append("%s/%s: %d %s" % (name, label, st[bad], bad))
+    base = out["default"]["relmse"]
+    for v in out.values():
+        v["relmse_ratio"] = v["relmse"] / base if base > 0 else None
+    return out
 
 
 def main():
@@ -207,8 +254,14 @@ def main():
     ap.add_argument("--mesh", help="the dense-mesh grid NUxNV (2 * NU * (NV - 1) triangles; default %s full, %s quick)"
                     % tuple("%dx%d" % MODES[m]["mesh"] for m in ("full", "quick")))
     ap.add_argument("--scaling-seconds", type=float, help="seconds of rendering per thread/variant run")
+    ap.add_argument("--settings-seconds", type=float, help="seconds of rendering per equal-time setting run")
+    ap.add_argument("--parts", default=",".join(PARTS),
+                    help="comma-separated subset of %s (default: all)" % ", ".join(PARTS))
     args = ap.parse_args()
     mode = "quick" if args.quick else "full"
+    args.parts = set(args.parts.split(","))
+    if args.parts - set(PARTS):
+        ap.error("unknown part(s): " + ", ".join(sorted(args.parts - set(PARTS))))
     cfg = dict(MODES[mode])
     if args.mesh:
         try:
@@ -273,7 +326,7 @@ def main():
                     "load_before": load_before, "load_after": load_average()},
         "error_log_overhead": {"rows": rows, "seconds_per_row": secs / rows if rows else 0.0,
                                "fraction": secs / wall if wall else 0.0},
-        "scenes": scenes, "failures": failures, "seconds": time.monotonic() - t0,
+        "parts": sorted(args.parts), "scenes": scenes, "failures": failures, "seconds": time.monotonic() - t0,
     }
     report.write_summary_json(os.path.join(args.out, "summary.json"), run)
     report.write_summary_md(os.path.join(args.out, "summary.md"), run)

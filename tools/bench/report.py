@@ -74,7 +74,13 @@ def write_summary_md(path, run):
             L.append("| %s | %s | %s | — | skipped: %s | | | | |" % (s["name"], s.get("size", ""), s.get("primitives", ""),
                                                                    s["skipped"]))
             continue
-        r, sc = s["reference"], s["scaling"]
+        r, sc = s["reference"], s.get("scaling")
+        if sc is None:
+            L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | — | — |" % (
+                s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
+                r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
+                fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"])))
+            continue
         L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
             s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
             r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
@@ -99,6 +105,24 @@ def write_summary_md(path, run):
              "2 threads. Scaling columns: steady samples/s with LP_NUM_THREADS=2 over LP_NUM_THREADS=1, and "
              "`--variant auto` over `--variant full` (both 2 threads, default sampler %s)." % run["default_sampler"])
     L.append("")
+    if any(s.get("settings") for s in run["scenes"]):
+        L.append("## Settings at equal time")
+        L.append("")
+        L.append("Default sampler (%s), 2 threads, the same --time for every run; relMSE ratio = the setting's "
+                 "final relMSE over the default's (below 1: the setting helps). *: reference-limited." %
+                 run["default_sampler"])
+        L.append("")
+        L.append("| scene | setting | spp (mean) | samples/s | rays/s | relMSE | RMSE | relMSE ratio |")
+        L.append("|---|---|---|---|---|---|---|---|")
+        for s in run["scenes"]:
+            for label, v in (s.get("settings") or {}).items():
+                mean = v.get("mean_spp")
+                L.append("| %s | %s | %d%s | %s | %s | %.3g%s | %.3g | %s |" % (
+                    s["name"], label, v["spp"], " (%.0f)" % mean if mean is not None and abs(mean - v["spp"]) > 0.5 else "",
+                    fmt_rate(v["samples_per_second"]), fmt_rate(v["rays_per_second"]), v["relmse"],
+                    "*" if v["ref_limited"] else "", v["rmse"],
+                    "%.2f" % v["relmse_ratio"] if v["relmse_ratio"] is not None else "—"))
+        L.append("")
     o = run["error_log_overhead"]
     L.append("Error-log rows: %d rows cost %.1f ms each on average (image read-back + error + CSV row; %.2f %% of "
              "the curve runs' wall time)." % (o["rows"], 1e3 * o["seconds_per_row"], 100 * o["fraction"]))
@@ -124,7 +148,7 @@ def plot(path, run, curves_by_scene):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    scenes = [s for s in run["scenes"] if not s.get("skipped")]
+    scenes = [s for s in run["scenes"] if not s.get("skipped") and curves_by_scene.get(s["name"])]
     if not scenes:
         return
     cols = 2 if len(scenes) > 1 else 1
