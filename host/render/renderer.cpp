@@ -6,6 +6,7 @@
 #include "bvh/flatten.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
+#include "render/environment.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
 #include "vk/buffer.h"
@@ -24,6 +25,8 @@ enum : std::uint32_t {
     kBindingSum,
     kBindingSumSq,
     kBindingCounters,
+    kBindingEnvTexels,
+    kBindingEnvDist,
 };
 
 template <class T>
@@ -58,8 +61,9 @@ Image PixelSums::varianceOfMean() const {
 }
 
 struct Renderer::Impl {
-    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters;
+    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, envTexels, envDist;
     vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
+    vk::raii::BufferView envTexelsView{nullptr}, envDistView{nullptr};
     std::unique_ptr<ComputePipeline> pipeline;
 };
 
@@ -75,6 +79,11 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
                           " primitives need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
+    const EnvTables env = packEnvironment(scene);
+    if (env.texels.size() > texelLimit || env.distribution.size() > texelLimit)
+        throw VulkanError("environment map too large for this device: " + std::to_string(env.width) + "x" +
+                          std::to_string(env.height) + " needs " + std::to_string(env.distribution.size()) +
+                          " texels, more than maxTexelBufferElements = " + std::to_string(texelLimit));
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
@@ -89,6 +98,10 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->primsView = impl_->prims->texelView();
     impl_->materialsView = impl_->materials->texelView();
     impl_->lightsView = impl_->lights->texelView();
+    impl_->envTexels = uploadTexels(device, env.texels);
+    impl_->envDist = uploadTexels(device, env.distribution);
+    impl_->envTexelsView = impl_->envTexels->texelView();
+    impl_->envDistView = impl_->envDist->texelView(vk::Format::eR32Sfloat);
 
     const std::size_t pixelBytes = std::size_t(width_) * height_ * 4 * sizeof(float);
     impl_->sum = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
@@ -105,7 +118,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     desc.bindings = {vk::DescriptorType::eUniformBuffer,      vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer,
-                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer};
+                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
+                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer};
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
@@ -118,6 +132,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     p.bindBuffer(kBindingSum, impl_->sum->buffer());
     p.bindBuffer(kBindingSumSq, impl_->sumSq->buffer());
     p.bindBuffer(kBindingCounters, impl_->counters->buffer());
+    p.bindTexelView(kBindingEnvTexels, *impl_->envTexelsView);
+    p.bindTexelView(kBindingEnvDist, *impl_->envDistView);
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 
