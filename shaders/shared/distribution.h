@@ -17,6 +17,10 @@
 //         including this header; the functions then take no table argument.
 // The density reported for a sample is the table's density (as pbrt), so sample and pdf agree bit
 // for bit; cells of zero density are never sampled (binary search skips zero-width CDF steps).
+// Limit: the CDF is stored in floats, so a cell whose probability is below ~6e-8 of its row (or
+// of the marginal) may get a zero-width step and never be sampled although its density is > 0
+// (the builder keeps such densities > 0, so MIS and the pdf stay right; only the `light` sampler,
+// which relies on light sampling alone, would miss that sliver of radiance).
 #ifndef VKP_DISTRIBUTION_H
 #define VKP_DISTRIBUTION_H
 #include "glsl_compat.h"
