@@ -1,7 +1,8 @@
 #version 460
 // vkpath's path tracer: one invocation per pixel adds push.batch.y samples to that pixel's sums.
 // Unidirectional path tracing ("Ray Tracing: The Rest of Your Life", sec. 2-12) with four ways
-// to sample at a diffuse vertex (SAMPLER, a specialization constant):
+// to sample at a diffuse vertex (SAMPLER, a specialization constant); "light" includes the
+// environment (lib/environment.glsl) when the scene has one:
 //   bsdf    - cosine-weighted; emission counted wherever a ray hits it;
 //   light   - next-event estimation: one emitter picked by power + shadow ray; emission found by
 //             the continuing cosine-sampled ray is then skipped (it was already counted);
@@ -23,6 +24,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "shared/compensated_sum.h"
 #include "lib/scene_lights.glsl"
 #include "lib/traverse.glsl"
+#include "lib/environment.glsl"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
@@ -38,6 +40,7 @@ struct PathState {
     uint rng;
     bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
     vec3 prevX;          // mis: the diffuse vertex the current ray left from
+    vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it)
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
 };
@@ -73,6 +76,7 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     s.depth = 0u;
     s.countEmission = true;
     s.prevX = s.o;
+    s.prevN = vec3(0.0f, 0.0f, 1.0f);
     s.prevBsdfPdf = 0.0f;
     return s;
 }
@@ -87,7 +91,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     s.depth++;
     bool hit = traceClosest(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, passes);
     if (!hit) {
-        s.radiance += s.throughput * vec3(frame.background.x, frame.background.y, frame.background.z);
+        s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);  // lib/environment.glsl
         return true;
     }
     GpuPrim p = fetchPrim(prim);
@@ -106,7 +110,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         float w = 1.0f;
         int li = primLight(p);
         if (s.prevBsdfPdf > 0.0f && li >= 0)
-            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * pdfLightPrim(p, s.prevX, s.d));
+            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, s.prevX, s.d));
         s.radiance += s.throughput * le * w;
     } else if (s.countEmission) {
         s.radiance += s.throughput * emitted(m, mflags, s.d, ng);
@@ -121,17 +125,25 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         float uStrategy = rngNext(s.rng);
         vec2 u2 = rngNext2(s.rng);
         vec3 xo = offsetRayOrigin(x, ns);
-        if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && emitterCount() > 0u) {
-            // Next-event estimation: one emitter picked by power, one point on it, a shadow ray.
+        if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn())) {
+            // Next-event estimation: the environment with probability pEnv (lib/environment.glsl),
+            // else one emitter picked by power (probability (1 - pEnv) x its share), one point on
+            // it, a shadow ray.
+            float pEnv = envPickProb();
+            bool toEnv = uStrategy < pEnv;
+            vec2 uLight = rngNext2(s.rng);
+            if (toEnv) s.radiance += s.throughput * envDirectLight(xo, ns, albedo, uLight, pEnv, rays, passes);
             float pickPdf;
-            uint lprim = floatBitsToUint(fetchLight(pickLightPower(uStrategy, pickPdf)).l0.x);
+            float uPick = toEnv ? 0.0f : min((uStrategy - pEnv) / (1.0f - pEnv), 0.99999994f);
+            uint lprim = floatBitsToUint(fetchLight(pickLightPower(uPick, pickPdf)).l0.x);
+            pickPdf *= 1.0f - pEnv;
             GpuPrim lp = fetchPrim(lprim);
-            LightSample ls = sampleLightPrim(lp, x, rngNext2(s.rng));
+            LightSample ls = sampleLightPrim(lp, x, uLight);
             float cosL = dot(ls.dir, ns);
             // A flat light cannot light itself: no sample of it from a point on it (rounding may put
             // the hit point on either side of its plane). A sphere can (from inside).
             bool self = lprim == prim && primKind(p) != PRIM_SPHERE;
-            if (ls.pdf > 0.0f && cosL > 0.0f && !self) {
+            if (!toEnv && ls.pdf > 0.0f && cosL > 0.0f && !self) {
                 GpuMaterial lm = fetchMaterial(primMaterial(lp));
                 vec3 lx = x + ls.dist * ls.dir;
                 vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
@@ -150,21 +162,25 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             s.countEmission = (SAMPLER == SAMPLER_MIS);
             newDir = sampleLambertian(ns, u2);
             s.prevX = x;
+            s.prevN = ns;
             s.prevBsdfPdf = pdfCosineHemisphere(dot(newDir, ns));
             s.throughput *= albedo;
-        } else if (SAMPLER == SAMPLER_MIXTURE && lightCount() > 0u) {
+        } else if (SAMPLER == SAMPLER_MIXTURE && mixtureLightCount() > 0u) {
             if (uStrategy < 0.5f) {
                 newDir = sampleLambertian(ns, u2);
+            } else if (envOn() && pickUniform(2.0f * uStrategy - 1.0f, mixtureLightCount()) == lightCount()) {
+                float envPdf;  // the environment: the last entry of the light list (lib/environment.glsl)
+                newDir = sampleEnv(ns, u2, envPdf, passes);
+                if (!(envPdf > 0.0f)) return true;
             } else {
-                float pickPdf;
-                uint li = pickLightUniform(2.0f * uStrategy - 1.0f, pickPdf);
+                uint li = pickUniform(2.0f * uStrategy - 1.0f, mixtureLightCount());  // < lightCount() here
                 LightSample ls = sampleLightPrim(fetchPrim(floatBitsToUint(fetchLight(li).l0.x)), x, u2);
                 newDir = ls.dir;
                 if (!(ls.pdf > 0.0f)) return true;  // no direction from this strategy: the sample is 0
             }
             float cosN = dot(newDir, ns);
             if (!(cosN > 0.0f)) return true;  // below the surface: f = 0
-            float pdf = 0.5f * pdfCosineHemisphere(cosN) + 0.5f * pdfLights(x, newDir, passes);
+            float pdf = 0.5f * pdfCosineHemisphere(cosN) + 0.5f * pdfLightsAndEnv(x, ns, newDir, passes);
             s.throughput *= albedo * VKP_INV_PI * cosN / pdf;
         } else {
             newDir = sampleLambertian(ns, u2);

@@ -1,5 +1,7 @@
 #include "render/features.h"
 
+#include "render/environment.h"
+
 namespace vkp {
 
 const char* samplerName(Sampler s) {
@@ -22,7 +24,7 @@ bool parseSampler(const std::string& name, Sampler& out) {
 
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus};
+            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap};
 }
 
 std::string Features::name() const {
@@ -49,6 +51,7 @@ std::string Features::name() const {
     out += " sampler:";
     out += samplerName(sampler);
     if (defocus) out += " defocus";
+    if (environment) out += environmentMap ? " env:map" : " env:constant";
     return out;
 }
 
@@ -57,7 +60,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     f.sampler = sampler;
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = true;
-        f.sphereLights = f.parallelogramLights = f.defocus = true;
+        f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -75,6 +78,8 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;
+    f.environment = hasEnvironmentLight(scene);
+    f.environmentMap = scene.environment.hasMap();
     return f;
 }
 

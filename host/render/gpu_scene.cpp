@@ -1,5 +1,6 @@
 #include "render/gpu_scene.h"
 
+#include "render/environment.h"
 #include "render/light_table.h"
 
 #include <bit>
@@ -56,6 +57,11 @@ gpu::GpuFrame packFrame(const Scene& scene) {
     f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), scene.render.rouletteDepth, emittingLightCount(scene), 0);
     const std::uint32_t groupsX = (scene.camera.width + 7) / 8, groupsY = (scene.camera.height + 7) / 8;
     f.tiles = glm::uvec4(groupsX, groupsX * groupsY, tileStride(groupsX * groupsY), 0);
+    const double rot = glm::radians(double(scene.environment.rotateY));
+    f.env = glm::vec4(float(std::cos(rot)), float(std::sin(rot)), float(envPickProbability(scene)),
+                      hasEnvironmentLight(scene) ? 1.0f : 0.0f);
+    if (scene.environment.hasMap())
+        f.envSize = glm::uvec4(scene.environment.image.width, scene.environment.image.height, 0, 0);
     return f;
 }
 

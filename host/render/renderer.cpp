@@ -6,6 +6,7 @@
 #include "bvh/flatten.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
+#include "render/environment.h"
 #include "render/adaptive.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
@@ -25,6 +26,8 @@ enum : std::uint32_t {
     kBindingSum,
     kBindingSumSq,
     kBindingCounters,
+    kBindingEnvTexels,
+    kBindingEnvDist,
     kBindingDecision,
     kBindingActive,
 };
@@ -61,8 +64,9 @@ Image PixelSums::varianceOfMean() const {
 }
 
 struct Renderer::Impl {
-    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, decision, active;
+    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, envTexels, envDist, decision, active;
     vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
+    vk::raii::BufferView envTexelsView{nullptr}, envDistView{nullptr};
     std::unique_ptr<ComputePipeline> pipeline;
 };
 
@@ -81,6 +85,11 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
                           " primitives need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
+    const EnvTables env = packEnvironment(scene);
+    if (env.texels.size() > texelLimit || env.distribution.size() > texelLimit)
+        throw VulkanError("environment map too large for this device: " + std::to_string(env.width) + "x" +
+                          std::to_string(env.height) + " needs " + std::to_string(env.distribution.size()) +
+                          " texels, more than maxTexelBufferElements = " + std::to_string(texelLimit));
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
@@ -95,6 +104,10 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->primsView = impl_->prims->texelView();
     impl_->materialsView = impl_->materials->texelView();
     impl_->lightsView = impl_->lights->texelView();
+    impl_->envTexels = uploadTexels(device, env.texels);
+    impl_->envDist = uploadTexels(device, env.distribution);
+    impl_->envTexelsView = impl_->envTexels->texelView();
+    impl_->envDistView = impl_->envDist->texelView(vk::Format::eR32Sfloat);
 
     // Two vec4 per pixel: the sum and its compensation (shaders/shared/compensated_sum.h).
     const std::size_t pixelBytes = std::size_t(width_) * height_ * 2 * 4 * sizeof(float);
@@ -123,6 +136,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer,
                      vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
+                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer};
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
@@ -136,6 +150,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     p.bindBuffer(kBindingSum, impl_->sum->buffer());
     p.bindBuffer(kBindingSumSq, impl_->sumSq->buffer());
     p.bindBuffer(kBindingCounters, impl_->counters->buffer());
+    p.bindTexelView(kBindingEnvTexels, *impl_->envTexelsView);
+    p.bindTexelView(kBindingEnvDist, *impl_->envDistView);
     p.bindBuffer(kBindingDecision, impl_->decision->buffer());
     p.bindBuffer(kBindingActive, impl_->active->buffer());
     device.instance().throwIfValidationMessages("while setting up the renderer");

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/image.h"
+
 namespace vkp {
 
 /// Pbr: the glTF 2.0 metallic-roughness material (with the extensions in PbrParams); only glTF
@@ -146,10 +148,22 @@ struct RenderSettings {
     std::uint32_t seed = 0;
 };
 
+/// An environment map ("environment" in the JSON format): an equirectangular image of radiance
+/// from infinitely far away (mapping: shaders/shared/environment_map.h). Without one, a non-zero
+/// RenderSettings::background is the environment (the same light with constant radiance).
+struct Environment {
+    std::filesystem::path file;  ///< as resolved (relative to the scene file); empty: no map
+    Image image;                 ///< radiance x strength, linear RGB, row 0 = the top (+y)
+    float strength = 1.0f;       ///< already applied to image
+    float rotateY = 0.0f;        ///< degrees about +y, like an object's rotate_y
+    bool hasMap() const { return !image.empty(); }
+};
+
 struct Scene {
     std::filesystem::path path;  ///< file it was loaded from (for messages)
     Camera camera;
     RenderSettings render;
+    Environment environment;
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<std::uint32_t> lights;  ///< indices into shapes of every sampled shape, in file order

@@ -115,6 +115,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
     const auto render = top.optional("render");
     const json::Value materials = top.required("materials");
     const json::Value objects = top.required("objects");
+    const auto environment = top.optional("environment");
     top.finish();
 
     Scene scene;
@@ -125,6 +126,11 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
     std::map<std::string, std::uint32_t> index;
     scenejson::readMaterials(materials, scene, index);
     scenejson::readObjects(objects, index, scene);
+    if (environment) {
+        if (scene.render.background != glm::vec3(0.0f))
+            environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
+        scene.environment = scenejson::readEnvironment(*environment, file);
+    }
     return scene;
 }
 

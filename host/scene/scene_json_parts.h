@@ -25,6 +25,10 @@ void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std
 /// "objects": appends world-space shapes and the light list.
 void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene);
 
+/// "environment": file (resolved against sceneFile's folder, read with core/image_io), strength,
+/// rotate_y. Image problems are reported at /environment/file.
+Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile);
+
 /// |a x b| <= 1e-6 |a| |b|: a and b are parallel (to float precision) or one of them is zero.
 bool parallelOrZero(glm::vec3 a, glm::vec3 b);
 

@@ -74,10 +74,10 @@ void GpuBuffer::download(void* dst, std::size_t bytes) {
     std::memcpy(dst, s.mapped, bytes);
 }
 
-vk::raii::BufferView GpuBuffer::texelView() const {
+vk::raii::BufferView GpuBuffer::texelView(vk::Format format) const {
     vk::BufferViewCreateInfo ci{};
     ci.buffer = *buffer_;
-    ci.format = vk::Format::eR32G32B32A32Uint;
+    ci.format = format;
     ci.offset = 0;
     ci.range = VK_WHOLE_SIZE;
     return vk::raii::BufferView(dev_->device(), ci);

@@ -21,8 +21,8 @@ public:
     /// Copy `bytes` bytes from the buffer (offset 0) to host memory.
     void download(void* dst, std::size_t bytes);
 
-    /// A view of the buffer as an R32G32B32A32_UINT uniform texel buffer (usamplerBuffer).
-    vk::raii::BufferView texelView() const;
+    /// A view of the buffer as a uniform texel buffer, by default R32G32B32A32_UINT (usamplerBuffer).
+    vk::raii::BufferView texelView(vk::Format format = vk::Format::eR32G32B32A32Uint) const;
 
 private:
     VulkanDevice* dev_;

@@ -16,6 +16,8 @@ layout(constant_id = 6) const bool HAS_SPHERE_LIGHTS = true;         // sampled 
 layout(constant_id = 7) const bool HAS_PARALLELOGRAM_LIGHTS = true;  // sampled quads/triangles
 layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_* below
 layout(constant_id = 9) const bool HAS_DEFOCUS = true;
+layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)
+layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES
@@ -37,9 +39,11 @@ layout(set = 0, binding = 4) uniform usamplerBuffer uLights;
 layout(set = 0, binding = 5, std430) buffer AccumSum { vec4 accumSum[]; };
 layout(set = 0, binding = 6, std430) buffer AccumSq { vec4 accumSq[]; };
 layout(set = 0, binding = 7, std430) buffer Counters { uint counters[]; };
+layout(set = 0, binding = 8) uniform usamplerBuffer uEnvTexels;  // rgb radiance per map texel (bits)
+layout(set = 0, binding = 9) uniform samplerBuffer uEnvDist;      // R32F: shared/distribution.h table
 // Adaptive sampling (host/render/adaptive.h): [2i], [2i+1] = pixel i's decision-stream sums.
-layout(set = 0, binding = 8, std430) buffer DecisionSums { vec4 decisionSums[]; };
-layout(set = 0, binding = 9, std430) readonly buffer ActivePixels { uint activePixels[]; };
+layout(set = 0, binding = 10, std430) buffer DecisionSums { vec4 decisionSums[]; };
+layout(set = 0, binding = 11, std430) readonly buffer ActivePixels { uint activePixels[]; };
 layout(push_constant) uniform PushBlock { GpuPush push; };
 
 vec4 fetchF(usamplerBuffer b, int i) { return uintBitsToFloat(texelFetch(b, i)); }

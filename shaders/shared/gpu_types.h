@@ -83,6 +83,12 @@ struct GpuFrame {
                       // z: number of them that emit (power-proportional picks need > 0), w: 0
     uvec4 tiles;      // x: workgroups per row, y: workgroups in all, z: tile stride (coprime
                       // with y, y * z < 2^32): workgroup g renders tile (g * z) mod y, w: reserved
+    vec4 env;         // environment light (lib/environment.glsl): x, y: cos, sin of rotate_y;
+                      // z: probability that next-event estimation picks the environment instead
+                      // of an emitter (host/render/environment.h); w: 1 if escaping rays see
+                      // radiance (a map or a non-zero background), else 0
+    uvec4 envSize;    // x, y: width, height of the environment map (0: none, the constant
+                      // background is the environment); z, w: 0
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel.

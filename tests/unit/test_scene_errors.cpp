@@ -2,6 +2,7 @@
 // "<file>: <JSON pointer>: <message>" with the RFC 6901 pointer of the offending value.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -26,6 +27,7 @@ std::string withCamera(const std::string& c) { return scene(c); }
 std::string withMaterials(const std::string& m) { return scene(kCamera, m); }
 std::string withObjects(const std::string& o) { return scene(kCamera, kMaterials, o); }
 std::string withObject(const std::string& o) { return withObjects("[" + o + "]"); }
+std::string withEnv(const std::string& e) { return scene(kCamera, kMaterials, "[" + kSphere + "]", ",\"environment\":" + e); }
 std::string withRender(const std::string& r) { return scene(kCamera, kMaterials, "[" + kSphere + "]", ",\"render\":" + r); }
 /// The camera with one key set to a raw JSON value.
 std::string cameraWith(const std::string& key, const std::string& value) {
@@ -170,6 +172,20 @@ std::vector<Case> cases() {
          "/objects/0/transform/1/scale", "a sphere cannot be scaled non-uniformly"},
         {"transform_overflow", sphereWith(R"(,"radius":1,"transform":[{"translate":[3e38,0,0]},{"translate":[3e38,0,0]}])"),
          "/objects/0", "does not fit 32-bit floats"},
+        // environment (files relative to the scene's folder; none of these exist)
+        {"env_type", withEnv("[]"), "/environment", "must be an object"},
+        {"env_file_missing_key", withEnv(R"({"strength":1})"), "/environment/file", "missing required key"},
+        {"env_file_type", withEnv(R"({"file":3})"), "/environment/file", "must be a string"},
+        {"env_file_empty", withEnv(R"({"file":""})"), "/environment/file", "must not be empty"},
+        {"env_file_absent", withEnv(R"({"file":"no-such-sky.hdr"})"), "/environment/file", "cannot use environment map"},
+        {"env_file_png", withEnv(R"({"file":"sky.png"})"), "/environment/file", "PNG is display-encoded"},
+        {"env_file_extension", withEnv(R"({"file":"sky.jpg"})"), "/environment/file", "unknown image extension"},
+        {"env_strength_negative", withEnv(R"({"file":"sky.hdr","strength":-1})"), "/environment/strength", "must be >= 0 (got -1)"},
+        {"env_rotate_type", withEnv(R"({"file":"sky.hdr","rotate_y":"90"})"), "/environment/rotate_y", "must be a number"},
+        {"env_unknown_key", withEnv(R"({"file":"sky.hdr","rotate":90})"), "/environment/rotate", "unknown key"},
+        {"env_and_background", scene(kCamera, kMaterials, "[" + kSphere + "]",
+                                     R"(,"render":{"background":[1,1,1]},"environment":{"file":"sky.hdr"})"),
+         "/environment", "cannot be combined with a non-zero render/background"},
     };
 }
 
@@ -196,6 +212,32 @@ TEST_P(SceneErrors, OneLineWithPointer) {
 
 INSTANTIATE_TEST_SUITE_P(Table, SceneErrors, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& p) { return std::string(p.param.name); });
+
+/// An environment map that exists but is corrupt or holds negative radiance: one line at
+/// /environment/file naming the map's problem.
+TEST(SceneErrorsFile, BadEnvironmentMapContent) {
+    const auto dir = vkp::test::scratchDir("scene_errors");
+    {
+        std::ofstream(dir / "corrupt.hdr", std::ios::binary | std::ios::trunc) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X";
+        std::ofstream pfm(dir / "negative.pfm", std::ios::binary | std::ios::trunc);
+        pfm << "PF\n1 1\n-1.0\n";
+        const float px[3] = {1.0f, -2.0f, 0.5f};
+        pfm.write(reinterpret_cast<const char*>(px), sizeof px);
+    }
+    for (const char* map : {"corrupt.hdr", "negative.pfm"}) {
+        const auto file = dir / (std::string("env-") + map + ".json");
+        std::ofstream(file, std::ios::binary | std::ios::trunc) << withEnv(std::string(R"({"file":")") + map + "\"}");
+        try {
+            (void)vkp::loadSceneJson(file);
+            ADD_FAILURE() << "accepted " << map;
+        } catch (const vkp::InputError& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind(file.string() + ": /environment/file: ", 0), 0u) << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+            std::printf("  %s\n", what.c_str());
+        }
+    }
+}
 
 TEST(SceneErrorsFile, MissingFile) {
     const auto file = vkp::test::scratchDir("scene_errors") / "does-not-exist.json";

@@ -191,6 +191,19 @@ TEST(SceneLoader, SpheresBook1) {
     expectNear(s.render.background, {0.7f, 0.8f, 1.0f});
 }
 
+TEST(SceneLoader, EnvSky) {
+    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "env-sky.json");
+    ASSERT_TRUE(s.environment.hasMap());
+    EXPECT_EQ(s.environment.file, vkp::test::scenesDir() / "env" / "sky.hdr");  // relative to the JSON file
+    EXPECT_EQ(s.environment.image.width, 48u);
+    EXPECT_EQ(s.environment.image.height, 24u);
+    EXPECT_EQ(s.environment.rotateY, 0.0f);
+    EXPECT_EQ(s.render.background, glm::vec3(0.0f));
+    // The sun texel (tools/gen_env_sky.py: column 31, row 5) is the brightest, at RGBE precision.
+    EXPECT_NEAR(s.environment.image.at(31, 5, 0), 2400.0f, 2400.0f / 128.0f);
+    EXPECT_TRUE(s.lights.empty());
+}
+
 TEST(SceneLoader, Furnace) {
     const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "furnace.json");
     ASSERT_EQ(s.shapes.size(), 1u);

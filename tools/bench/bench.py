@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """vkpath's benchmark suite: run time against error (README "Benchmarks").
 
-For each scene (cornell-book3, cornell-classic, spheres-book1 and a generated dense-mesh scene) it
+For each scene (cornell-book3, cornell-classic, spheres-book1, env-sky (environment-lit) and a
+generated dense-mesh scene) it
   1. makes or reuses a cached reference (references.py) and states its spp and noise floor;
   2. warms Mesa's shader cache for every pipeline it will time, then measures the time to first
      pixel with a fresh, empty cache (cold) and again with the same cache (warm);
@@ -48,6 +49,7 @@ SCENES = [
     ("cornell-book3", "scenes/cornell-book3.json", (256, 256), (64, 64)),
     ("cornell-classic", "scenes/cornell-classic.json", (256, 256), (64, 64)),
     ("spheres-book1", "scenes/spheres-book1.json", (320, 180), (96, 54)),
+    ("env-sky", "scenes/env-sky.json", (320, 180), (96, 54)),
     ("dense-mesh", None, (256, 256), (64, 64)),
 ]
 MODES = {
