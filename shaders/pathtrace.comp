@@ -124,7 +124,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
         float uStrategy = rngNext(s.rng);
         vec2 u2 = rngNext2(s.rng);
-        vec3 xo = offsetRayOrigin(x, ns);
+        vec3 xo = spawnRayOrigin(p, ab, x, ns);
         if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn())) {
             // Next-event estimation: the environment with probability pEnv (lib/environment.glsl),
             // else one emitter picked by power (probability (1 - pEnv) x its share), one point on
@@ -149,7 +149,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
                 vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
                 if (max(le.x, max(le.y, le.z)) > 0.0f) {  // no shadow ray towards a light's back
                     rays++;
-                    vec4 sr = shadowRayTo(xo, lx, primNormal(lp, lx));  // between offset end points
+                    vec3 nl = primNormal(lp, lx);
+                    vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl));  // between offset end points
                     if (!traceAny(xo, vec3(sr.x, sr.y, sr.z), 0.0f, sr.w, passes)) {
                         float pl = ls.pdf * pickPdf;
                         float w = (SAMPLER == SAMPLER_MIS) ? powerHeuristic(pl, pdfCosineHemisphere(cosL)) : 1.0f;
@@ -192,10 +193,10 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         newDir = scatterMetal(s.d, ns, m.m1.w, vec3(rngNext(s.rng), rngNext(s.rng), rngNext(s.rng)), absorbed);
         if (absorbed) return true;
         s.throughput *= albedo;
-        s.o = offsetRayOrigin(x, ns);
+        s.o = spawnRayOrigin(p, ab, x, ns);
     } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
         newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
-        s.o = offsetRayOrigin(x, dot(newDir, ns) > 0.0f ? ns : -ns);
+        s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
     }
     s.d = newDir;
 

@@ -26,6 +26,7 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
     vec3 e1 = primEdge1(p);  // triangles store vertices
     vec3 e2 = primEdge2(p);
+    if (inPrimPlane(p, x)) return s;  // a flat light seen edge-on from its own plane: no sample
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
         s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi) : sampleQuadLight(p0, e1, e2, x, xi);
@@ -40,6 +41,7 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     vec3 e1 = primEdge1(p);  // triangles store vertices
     vec3 e2 = primEdge2(p);
     float pdf = 0.0f;
+    if (inPrimPlane(p, x)) return 0.0f;  // as in sampleLightPrim
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
         pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d) : pdfQuadLight(p0, e1, e2, x, d);

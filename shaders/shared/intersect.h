@@ -5,6 +5,7 @@
 #ifndef VKP_INTERSECT_H
 #define VKP_INTERSECT_H
 #include "gpu_types.h"
+#include "ray_offset.h"
 
 VKP_BEGIN
 
@@ -188,6 +189,42 @@ VKP_FN vec3 primHitPoint(GpuPrim p, vec3 o, vec3 d, float t, vec2 ab) {
 VKP_FN vec3 primNormal(GpuPrim p, vec3 x) {
     if (primKind(p) == PRIM_SPHERE) return (x - vec3(p.p0.x, p.p0.y, p.p0.z)) / p.p1.w;
     return normalize(cross(primEdge1(p), primEdge2(p)));
+}
+
+/// Extra distance (world units, >= 0) by which a ray leaving point Q + a e1 + b e2 (ab = (a, b), from
+/// intersectPrim) of flat primitive p must start off its plane, on top of offsetRayOrigin's step.
+/// offsetRayOrigin's step is relative to the hit point's own coordinates, but the error of a point
+/// computed on a quad or triangle is set by the terms that made it: per coordinate i about
+/// gamma(4) (|Q_i| + |a e1_i| + |b e2_i|), gamma(n) = n eps / (1 - n eps), eps = 2^-24; what
+/// matters is its component along the unit normal n, dot(|n|, that) (pbrt-v4 sec. 6.8.4-6.8.6,
+/// "pError" and OffsetRayOrigin). On a large tilted plane through the origin the hit point's
+/// coordinates along the normal are near 0 while that error is ulps of 100s: without this term
+/// 0.08% of the rays leaving scenes/stress/tilted-quad.json hit it again. For a plane aligned with
+/// the axes it is 0 (the coordinate along the normal is exact). The factor 2^-21 = 8 eps covers
+/// gamma(4) and the next intersection test's own rounding of the origin's side of the plane.
+/// Spheres: 0 (their points' error scales with |x|, which offsetRayOrigin covers).
+VKP_FN float primOffsetDistance(GpuPrim p, vec2 ab, vec3 n) {
+    if (primKind(p) == PRIM_SPHERE) return 0.0f;
+    vec3 err = abs(vec3(p.p0.x, p.p0.y, p.p0.z)) + abs(ab.x * primEdge1(p)) + abs(ab.y * primEdge2(p));
+    return dot(abs(n), err) * (1.0f / 2097152.0f);
+}
+
+/// Origin of a ray leaving hit point x (from primHitPoint, surface parameters ab) of primitive p, on
+/// the side of unit normal n: moved off the plane by primOffsetDistance, then by offsetRayOrigin.
+VKP_FN vec3 spawnRayOrigin(GpuPrim p, vec2 ab, vec3 x, vec3 n) {
+    return offsetRayOrigin(x + primOffsetDistance(p, ab, n) * n, n);
+}
+
+/// True when point x lies in the plane of flat primitive p, within the rounding band that
+/// primOffsetDistance bounds for any point of p: from there p subtends no solid angle, so light
+/// sampling must not pick it (a direction "towards" it is tangent to x's surface up to rounding, and
+/// its pdf cannot be evaluated consistently: the book's mixture then weighted such samples by
+/// 2 albedo).
+VKP_FN bool inPrimPlane(GpuPrim p, vec3 x) {
+    if (primKind(p) == PRIM_SPHERE) return false;
+    vec3 n = normalize(cross(primEdge1(p), primEdge2(p)));
+    float band = primOffsetDistance(p, vec2(1.0f, 1.0f), n);
+    return abs(dot(x - vec3(p.p0.x, p.p0.y, p.p0.z), n)) <= band;
 }
 
 /// 1/x for the slab test: +-infinity when |x| <= 1e-20 (the sign of x; +inf for +-0), so the result

@@ -6,7 +6,10 @@
 //     or the sphere's centre + R * unit direction), so that its error is a few ulps of the
 //     primitive's own coordinates, whatever the distance the ray travelled.
 //  2. The new ray starts at that point moved off the surface along the geometric normal, on the
-//     side the ray leaves to (offsetRayOrigin): by 256 ulps of each coordinate (an integer step
+//     side the ray leaves to: for quads and triangles first by a distance proportional to the
+//     primitive's own size and position (intersect.h primOffsetDistance, spawnRayOrigin: their
+//     points' error is set by the primitive, not by the point), then (offsetRayOrigin) by 256 ulps
+//     of each coordinate (an integer step
 //     on the float's bit pattern, so the offset is relative and works at any scale and distance
 //     from the origin), or by 2^-16 absolute for coordinates below 2^-5, where ulps become too
 //     small to cover the absolute error of the arithmetic that produced them.
@@ -50,10 +53,12 @@ VKP_FN vec3 offsetRayOrigin(vec3 p, vec3 n) {
 ///    the offset / cos, which a far-away scene turns into a whole-light false occlusion),
 ///  - the length is cut by 2^-14 of itself: the distance an intersection routine computes along a
 ///    ray errs by a few ulps of t itself, 2^-14 allows for 1 / |cos| up to ~100 at the light.
+/// yExtra: the light primitive's primOffsetDistance (intersect.h), added along the normal first.
 /// xo == y after offsetting gives length 0 (no ray).
-VKP_FN vec4 shadowRayTo(vec3 xo, vec3 y, vec3 ny) {
+VKP_FN vec4 shadowRayTo(vec3 xo, vec3 y, vec3 ny, float yExtra) {
     vec3 towards = xo - y;
-    vec3 yo = offsetRayOrigin(y, (dot(towards, ny) >= 0.0f) ? ny : -ny);
+    vec3 side = (dot(towards, ny) >= 0.0f) ? ny : -ny;
+    vec3 yo = offsetRayOrigin(y + yExtra * side, side);
     vec3 s = yo - xo;
     float len = length(s);
     return (len > 0.0f) ? vec4(s / len, len * (1.0f - 1.0f / 16384.0f)) : vec4(0.0f, 0.0f, 1.0f, 0.0f);

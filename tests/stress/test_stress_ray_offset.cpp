@@ -7,7 +7,7 @@
 // new ray hits is compared with the truth, found in double precision from the exact hit point of
 // the camera ray (brute force over the quads, the surface left excluded). A secondary ray is wrong
 // when it finds another surface than the truth (or none):
-//  - ours: origin offsetRayOrigin(primHitPoint(...), normal), t in (0, inf);
+//  - ours: origin spawnRayOrigin(prim, primHitPoint(...), normal), t in (0, inf);
 //  - the book's: origin o + t d, t in (0.001, inf);
 //  - (reported, not asserted) ours without recomputing the hit point: offsetRayOrigin(o + t d).
 //    o + t d errs by ulps of |o|, which on the plane x = 0 seen from x ~ 300 exceed the 2^-16 offset
@@ -70,7 +70,7 @@ TrueHit trueHit(const Scene& s, const dvec3& o, const dvec3& d, int skip) {
 }
 
 struct Tally {
-    long rays = 0, oursWrong = 0, bookWrong = 0, oursOther = 0, rawWrong = 0;
+    long rays = 0, oursWrong = 0, bookWrong = 0, oursOther = 0, rawWrong = 0, relOnlyWrong = 0;
     long shadowRays = 0, oursShadowWrong = 0, bookShadowWrong = 0, oursShadowOther = 0;
 };
 
@@ -99,6 +99,7 @@ Tally experiment(const std::string& file, int n) {
     Tally tally;
     std::vector<vec3> points, normals;  // surface points (exact, rounded to float) for the shadow rays
     std::vector<int> pointShapes;
+    std::vector<gpu::GpuPrim> pointPrims;
     for (int i = 0; i < n; ++i) {
         const vec3 target = p00 + rng.uniform(-0.5f, float(scene.camera.width) - 0.5f) * du +
                             rng.uniform(-0.5f, float(scene.camera.height) - 0.5f) * dv;
@@ -120,11 +121,17 @@ Tally experiment(const std::string& file, int n) {
         const double cosine = std::max(1e-3, double(glm::dot(w, ns)));
         ++tally.rays;
         // Ours.
-        const vec3 xo = gpu::offsetRayOrigin(gpu::primHitPoint(prim, origin, d, cam.t, cam.ab), ns);
+        const vec3 xo = gpu::spawnRayOrigin(prim, cam.ab, gpu::primHitPoint(prim, origin, d, cam.t, cam.ab), ns);
         const TraceResult ours = traceClosestCpu(bvh, xo, w, 0.0f, gpu::VKP_FAR);
         const double shift = glm::length(dvec3(xo) - xTrue);
         classify(shape, truth, ours.hit ? int(bvh.primToShape[ours.prim]) : -1, ours.t, shift, cosine, tally.oursWrong,
                  tally.oursOther);
+        // Ours without the primitive's term (offsetRayOrigin's relative step only).
+        const vec3 xRel = gpu::offsetRayOrigin(gpu::primHitPoint(prim, origin, d, cam.t, cam.ab), ns);
+        const TraceResult rel = traceClosestCpu(bvh, xRel, w, 0.0f, gpu::VKP_FAR);
+        long relOther = 0;
+        classify(shape, truth, rel.hit ? int(bvh.primToShape[rel.prim]) : -1, rel.t, glm::length(dvec3(xRel) - xTrue),
+                 cosine, tally.relOnlyWrong, relOther);
         // Ours without recomputing the hit point (o + t d, then the offset).
         const vec3 xRaw = gpu::offsetRayOrigin(origin + cam.t * d, ns);
         const TraceResult raw = traceClosestCpu(bvh, xRaw, w, 0.0f, gpu::VKP_FAR);
@@ -139,6 +146,7 @@ Tally experiment(const std::string& file, int n) {
                  cosine, tally.bookWrong, bookOther);
         points.push_back(vec3(xTrue));
         pointShapes.push_back(shape);
+        pointPrims.push_back(prim);
         normals.push_back(ns);
     }
     // Shadow rays between pairs of surface points that see each other (double-precision truth).
@@ -155,8 +163,9 @@ Tally experiment(const std::string& file, int n) {
         auto endpointHit = [&](const TraceResult& r) {
             return r.hit && (int(bvh.primToShape[r.prim]) == pointShapes[i] || int(bvh.primToShape[r.prim]) == pointShapes[i + 1]);
         };
-        const vec3 xo = gpu::offsetRayOrigin(points[i], normals[i]);
-        const glm::vec4 sr = gpu::shadowRayTo(xo, points[i + 1], normals[i + 1]);
+        const vec3 xo = gpu::spawnRayOrigin(pointPrims[i], glm::vec2(1.0f), points[i], normals[i]);
+        const glm::vec4 sr = gpu::shadowRayTo(xo, points[i + 1], normals[i + 1],
+                                              gpu::primOffsetDistance(pointPrims[i + 1], glm::vec2(1.0f), normals[i + 1]));
         const TraceResult ours = traceAnyCpu(bvh, xo, vec3(sr), 0.0f, sr.w);
         tally.oursShadowWrong += endpointHit(ours);
         tally.oursShadowOther += ours.hit && !endpointHit(ours);
@@ -164,10 +173,11 @@ Tally experiment(const std::string& file, int n) {
         const TraceResult book = traceAnyCpu(bvh, points[i], db, 0.001f, 0.999f * glm::length(points[i + 1] - points[i]));
         tally.bookShadowWrong += endpointHit(book);
     }
-    std::printf("%-26s %6ld secondary rays wrong: ours %4ld (%.4f%%; +%ld past an edge), ours from o + t d %5ld (%.2f%%), "
+    std::printf("%-26s %6ld secondary rays wrong: ours %4ld (%.4f%%; +%ld past an edge), without the primitive term %5ld "
+                "(%.2f%%), ours from o + t d %5ld (%.2f%%), "
                 "t_min 0.001 %6ld (%.2f%%) | %5ld shadow rays falsely occluded: ours %ld (+%ld), 0.999 d %4ld (%.2f%%)\n",
                 std::filesystem::path(file).filename().c_str(), tally.rays, tally.oursWrong, 100.0 * tally.oursWrong / tally.rays,
-                tally.oursOther, tally.rawWrong, 100.0 * tally.rawWrong / tally.rays, tally.bookWrong, 100.0 * tally.bookWrong / tally.rays, tally.shadowRays, tally.oursShadowWrong,
+                tally.oursOther, tally.relOnlyWrong, 100.0 * tally.relOnlyWrong / tally.rays, tally.rawWrong, 100.0 * tally.rawWrong / tally.rays, tally.bookWrong, 100.0 * tally.bookWrong / tally.rays, tally.shadowRays, tally.oursShadowWrong,
                 tally.oursShadowOther, tally.bookShadowWrong, 100.0 * tally.bookShadowWrong / std::max(1L, tally.shadowRays));
     return tally;
 }
@@ -186,6 +196,20 @@ TEST(StressRayOffset, OffsetPolicyHoldsAtEveryScaleWhereAFixedTminFails) {
         EXPECT_TRUE(t.bookWrong >= t.rays / 200 || t.bookShadowWrong >= t.shadowRays / 200)
             << name << ": the book's t_min should fail here in >= 0.5% of the rays";
     }
+}
+
+// A large tilted quad through the origin (scenes/stress/tilted-quad.json): the hit points'
+// coordinates along the normal are near 0, their error is ulps of the quad's size. The primitive
+// term of spawnRayOrigin (primOffsetDistance) is what keeps leaving rays off it: without it, 79 of
+// 100k camera-ray hits (0.08%) send their secondary ray back into the quad (the test wants >= 0.05%,
+// five times the 1e-4 allowed for ours; deterministic: fixed seed); in a render some pixels were
+// 4% too dark.
+TEST(StressRayOffset, PrimitiveTermKeepsRaysOffALargeTiltedQuad) {
+    const int n = 100000;
+    const Tally t = experiment((scenesDir() / "stress" / "tilted-quad.json").string(), n);
+    ASSERT_GT(t.rays, n / 2);
+    EXPECT_LE(t.oursWrong, t.rays / 10000);
+    EXPECT_GE(t.relOnlyWrong, t.rays / 2000) << "the relative step alone should fail here";
 }
 
 }  // namespace

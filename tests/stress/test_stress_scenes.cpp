@@ -189,6 +189,16 @@ TEST(StressScenes, NeedleThinAndZeroAreaTriangles) {
                        [](glm::dvec3 o, glm::dvec3 d) { return !hitsSquare(o, d, 1.15); });
 }
 
+// A 400 x 400 plane through the origin, tilted, filling the view: as a quad, and as two triangles
+// of which one is sampled (light sampling from points in its own plane must pick nothing there).
+TEST(StressScenes, LargeTiltedPlanes) {
+    VKP_REQUIRE_DEVICE(dev);
+    auto all = [](glm::dvec3, glm::dvec3) { return true; };
+    auto none = [](glm::dvec3, glm::dvec3) { return false; };
+    expectExactSurface(dev, "tilted-quad.json", all, none);
+    expectExactSurface(dev, "tilted-triangles.json", all, none);
+}
+
 TEST(StressScenes, DistantCamera) {
     VKP_REQUIRE_DEVICE(dev);
     expectExactSurface(dev, "distant-camera.json", [](glm::dvec3 o, glm::dvec3 d) { return hitsSphere(o, d, 1.0); },
