@@ -35,8 +35,8 @@ TEST(Chi2Support, PValuesMatchTables) {
 
 TEST(Chi2Support, SidakCorrection) {
     EXPECT_NEAR(sidakAlpha(0.01, 1), 0.01, 1e-15);
-    double a = sidakAlpha(0.01, 64);
-    EXPECT_NEAR(1.0 - std::pow(1.0 - a, 64), 0.01, 1e-12);
+    double a = sidakAlpha(0.01, kStatsChi2Budget);
+    EXPECT_NEAR(1.0 - std::pow(1.0 - a, kStatsChi2Budget), 0.01, 1e-12);
     EXPECT_NEAR(statsAlpha(), a, 1e-15);
 }
 

@@ -21,8 +21,8 @@
 namespace vkp::test {
 
 constexpr double kStatsFamilyAlpha = 0.01;
-constexpr int kStatsChi2Budget = 64;
-/// Per-test significance (~1.57e-4).
+constexpr int kStatsChi2Budget = 128;
+/// Per-test significance (~7.85e-5).
 inline double statsAlpha() { return sidakAlpha(kStatsFamilyAlpha, kStatsChi2Budget); }
 
 /// gtest predicate: the test's p-value is at least statsAlpha(). The message carries the
