@@ -22,7 +22,7 @@ bool parseSampler(const std::string& name, Sampler& out) {
 
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus};
+            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, pbr};
 }
 
 std::string Features::name() const {
@@ -37,6 +37,7 @@ std::string Features::name() const {
     add(mats, lambertian, "lambertian");
     add(mats, metal, "metal");
     add(mats, dielectric, "dielectric");
+    add(mats, pbr, "pbr");
     add(mats, emitters, "emission");
     add(lights, sphereLights, "sphere");
     add(lights, parallelogramLights, "quad/triangle");
@@ -56,7 +57,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     Features f;
     f.sampler = sampler;
     if (full) {
-        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = true;
+        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.parallelogramLights = f.defocus = true;
         return f;
     }
@@ -72,6 +73,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
         f.lambertian |= m.type == MaterialType::Lambertian;
         f.metal |= m.type == MaterialType::Metal;
         f.dielectric |= m.type == MaterialType::Dielectric;
+        f.pbr |= m.type == MaterialType::Pbr;
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;

@@ -19,11 +19,12 @@ bool parseSampler(const std::string& name, Sampler& out);
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
+    bool pbr = false;  ///< glTF metallic-roughness materials (MaterialType::Pbr after kernelMaterial)
     bool sphereLights = false, parallelogramLights = false;  ///< kinds in the light list
     bool defocus = false;
     Sampler sampler = Sampler::Mis;
 
-    /// Values for constant_id 0..9, in the order of shaders/lib/bindings.glsl.
+    /// Values for constant_id 0..10, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

@@ -16,6 +16,7 @@ layout(constant_id = 6) const bool HAS_SPHERE_LIGHTS = true;         // sampled 
 layout(constant_id = 7) const bool HAS_PARALLELOGRAM_LIGHTS = true;  // sampled quads/triangles
 layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_* below
 layout(constant_id = 9) const bool HAS_DEFOCUS = true;
+layout(constant_id = 10) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES
@@ -63,6 +64,12 @@ GpuMaterial fetchMaterial(uint i) {
     GpuMaterial m;
     m.m0 = fetchF(uMaterials, base);
     m.m1 = fetchF(uMaterials, base + 1);
+    m.m2 = vec4(0.0f);
+    m.m3 = vec4(0.0f);
+    if (HAS_PBR) {  // only MAT_PBR reads them: other variants skip the two fetches
+        m.m2 = fetchF(uMaterials, base + 2);
+        m.m3 = fetchF(uMaterials, base + 3);
+    }
     return m;
 }
 

@@ -23,7 +23,8 @@ using glm::vec4;
 /// Routine ids of sampling_test.comp (push constant `routine`).
 enum Routine : std::uint32_t {
     kRng, kOnb, kCosineHemi, kUniformSphere, kUniformHemi, kUniformCone, kUniformDisk, kUniformBall,
-    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight
+    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight,
+    kGgxVndf, kGltfSample, kGltfEval
 };
 
 /// Inputs in0..in3 of one item (binding 0: four vec4 per item).
