@@ -1,6 +1,6 @@
 #version 460
 // Device test kernel for the shared sampling code (rng.h, onb.h, sampling.h, light_sampling.h,
-// scatter.h): evaluates the routine chosen by the push constant for `count` items, so a host test
+// scatter.h, microfacet.h): evaluates the routine chosen by the push constant for `count` items, so a host test
 // can compare the GPU results with the same headers compiled as C++.
 //
 // I/O layout (std430, every element a vec4):

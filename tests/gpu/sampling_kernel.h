@@ -1,6 +1,6 @@
 // Harness of the test_gpu_sampling*.cpp tests: runs the device test kernel
 // shaders/tests/sampling_test.comp (the GLSL build of shaders/shared/{rng,onb,sampling,
-// light_sampling,scatter}.h; I/O layout and routine ids at its top) and its C++ twin (the same
+// light_sampling,scatter,microfacet}.h; I/O layout and routine ids at its top) and its C++ twin (the same
 // main() with vkp::gpu), and compares their outputs item by item.
 #pragma once
 #include <bit>
