@@ -9,6 +9,8 @@
 //   mixture - the book's mixture_pdf: 0.5 cosine + 0.5 light (picked uniformly), pdf the sum;
 //   mis     - the light sample of `light` and the cosine sample both count, each weighted by the
 //             power heuristic (Veach 1997, ch. 9), the light pdf including its pick probability.
+// At a glTF metallic-roughness vertex (MAT_PBR) the BRDF sample replaces the cosine sample and
+// `light` works as `mis` (lib/scatter_pbr.glsl).
 // Every sample's random numbers depend only on (pixel, sample index, seed), and each sample is added
 // to the running sums in sample order, so any split of samples over dispatches gives the same bits.
 #extension GL_GOOGLE_include_directive : require
@@ -52,6 +54,8 @@ vec3 emitted(GpuMaterial m, uint mflags, vec3 d, vec3 n) {
     bool oneSided = (mflags & 15u) == MAT_DIFFUSE_LIGHT && (mflags & MATF_TWO_SIDED) == 0u;
     return (front || !oneSided) ? vec3(m.m1.x, m.m1.y, m.m1.z) : vec3(0.0f);
 }
+
+#include "lib/scatter_pbr.glsl"
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
 /// over the pixel's square and, if the variant has it, a point on the defocus disk.
@@ -113,7 +117,12 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, s.prevX, s.d));
         s.radiance += s.throughput * le * w;
     } else if (s.countEmission) {
-        s.radiance += s.throughput * emitted(m, mflags, s.d, ng);
+        // `light` after a MAT_PBR vertex (which set prevBsdfPdf) weights like mis; else w = 1.
+        float w = 1.0f;
+        int li = primLight(p);
+        if (HAS_PBR && SAMPLER == SAMPLER_LIGHT && s.prevBsdfPdf > 0.0f && li >= 0)
+            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, s.prevX, s.d));
+        s.radiance += s.throughput * emitted(m, mflags, s.d, ng) * w;
     }
     s.countEmission = true;
     s.prevBsdfPdf = 0.0f;
@@ -197,6 +206,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
         newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
         s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
+    } else if (HAS_PBR && mtype == MAT_PBR) {
+        if (scatterPbr(s, m, p, prim, ab, x, ns, newDir, rays, passes)) return true;
     }
     s.d = newDir;
 

@@ -24,7 +24,7 @@ bool parseSampler(const std::string& name, Sampler& out) {
 
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap};
+            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr};
 }
 
 std::string Features::name() const {
@@ -39,6 +39,7 @@ std::string Features::name() const {
     add(mats, lambertian, "lambertian");
     add(mats, metal, "metal");
     add(mats, dielectric, "dielectric");
+    add(mats, pbr, "pbr");
     add(mats, emitters, "emission");
     add(lights, sphereLights, "sphere");
     add(lights, parallelogramLights, "quad/triangle");
@@ -59,7 +60,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     Features f;
     f.sampler = sampler;
     if (full) {
-        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = true;
+        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
         return f;
     }
@@ -75,6 +76,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
         f.lambertian |= m.type == MaterialType::Lambertian;
         f.metal |= m.type == MaterialType::Metal;
         f.dielectric |= m.type == MaterialType::Dielectric;
+        f.pbr |= m.type == MaterialType::Pbr;
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;

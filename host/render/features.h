@@ -19,13 +19,14 @@ bool parseSampler(const std::string& name, Sampler& out);
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
+    bool pbr = false;  ///< glTF metallic-roughness materials (MaterialType::Pbr after kernelMaterial)
     bool sphereLights = false, parallelogramLights = false;  ///< kinds in the light list
     bool defocus = false;
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
     Sampler sampler = Sampler::Mis;
 
-    /// Values for constant_id 0..11, in the order of shaders/lib/bindings.glsl.
+    /// Values for constant_id 0..12, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

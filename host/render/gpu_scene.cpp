@@ -69,10 +69,8 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
     std::vector<gpu::GpuMaterial> out;
     out.reserve(materials.size());
     for (const Material& original : materials) {
-        // glTF Pbr materials are rendered as an approximation in the book's materials until the
-        // kernel has the glTF BRDF: rough dielectrics -> lambertian (albedo = base colour), metals
-        // -> metal (fuzz = roughness^2), transmission -> exact-Fresnel glass, emitters ->
-        // diffuse_light (single-sided unless doubleSided). See kernelMaterial (scene.h).
+        // glTF Pbr materials: the glTF BRDF (MAT_PBR), except transmission -> exact-Fresnel glass
+        // and emitters -> diffuse_light (single-sided unless doubleSided). See kernelMaterial.
         const Material m = kernelMaterial(original);
         std::uint32_t flags = std::uint32_t(m.type);
         if (m.twoSided) flags |= gpu::MATF_TWO_SIDED;
@@ -82,6 +80,11 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
         gpu::GpuMaterial g{};
         g.m0 = v4(m.albedo, bitsf(flags));
         g.m1 = v4(m.emit, param);
+        if (m.type == MaterialType::Pbr) {
+            g.m0 = v4(glm::vec3(m.pbr.baseColor), bitsf(flags));
+            g.m2 = v4(m.pbr.specularColor, m.pbr.specular);
+            g.m3 = glm::vec4(m.pbr.metallic, m.pbr.roughness, 0.0f, 0.0f);
+        }
         out.push_back(g);
     }
     return out;

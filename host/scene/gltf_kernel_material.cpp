@@ -1,6 +1,6 @@
-// kernelMaterial: what the current kernel (the book's materials) renders for a glTF Pbr material,
-// until the kernel has the glTF BRDF (Lambertian + GGX, glTF 2.0 appendix B). An approximation,
-// chosen to be exact for the case that matters now (rough dielectrics with specularFactor 0).
+// kernelMaterial: what the kernel renders for a glTF Pbr material. Opaque glTF materials keep the
+// glTF BRDF (MaterialType::Pbr -> MAT_PBR, shaders/shared/microfacet.h); transmission and
+// emission are mapped to the book's materials.
 #include "scene/scene.h"
 
 namespace vkp {
@@ -26,15 +26,15 @@ Material kernelMaterial(const Material& m) {
         k.albedo = glm::vec3(1.0f);
         k.ior = m.ior;
         k.fresnelExact = true;
-    } else if (m.pbr.metallic >= 0.5f || (m.pbr.transmission > 0.0f && m.ior == 0.0f)) {
-        // Mostly metallic: the book's fuzzy metal, F0 = base colour, fuzz = GGX alpha = roughness^2.
+    } else if (m.pbr.transmission > 0.0f && m.ior == 0.0f) {
+        // Transmission with KHR_materials_ior 0 (no refraction defined): the book's fuzzy metal,
+        // F0 = base colour, fuzz = GGX alpha = roughness^2.
         k.type = MaterialType::Metal;
         k.albedo = base;
         k.fuzz = m.pbr.roughness * m.pbr.roughness;
     } else {
-        // Mostly dielectric: the Lambertian base alone, albedo = base colour; the specular layer
-        // (F0 = 0.04 by default, a few percent of the reflected light) is dropped.
-        k.type = MaterialType::Lambertian;
+        // Opaque: the glTF BRDF itself (Lambertian base + GGX specular, blended by metallic).
+        k = m;
         k.albedo = base;
     }
     return k;

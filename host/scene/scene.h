@@ -14,7 +14,7 @@
 namespace vkp {
 
 /// Pbr: the glTF 2.0 metallic-roughness material (with the extensions in PbrParams); only glTF
-/// files produce it. Until the kernel has the glTF BRDF it renders kernelMaterial(m) instead.
+/// files produce it. The kernel renders kernelMaterial(m): the glTF BRDF unless it emits or transmits.
 enum class MaterialType : std::uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, DiffuseLight = 3, Pbr = 4 };
 
 /// A texture lookup of a material: which texture of Scene::textures, which UV set, and the
@@ -183,8 +183,8 @@ Scene loadSceneJson(const std::filesystem::path& file);
 /// The same from text already in memory; file is only used in messages and Scene::path.
 Scene parseSceneJson(std::string_view text, const std::filesystem::path& file);
 
-/// What the current kernel renders for m: m itself, except for Pbr, which becomes an approximation
-/// in the book's materials (see its definition in host/scene/gltf_kernel_material.cpp). Used by the
+/// What the kernel renders for m: m itself, except for an emitting Pbr (diffuse_light) and a
+/// transmitting one (exact-Fresnel glass); see host/scene/gltf_kernel_material.cpp. Used by the
 /// GPU packing and should be used by anything that chooses kernel features from material types.
 Material kernelMaterial(const Material& m);
 

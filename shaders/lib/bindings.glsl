@@ -18,6 +18,7 @@ layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_
 layout(constant_id = 9) const bool HAS_DEFOCUS = true;
 layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)
 layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
+layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES
@@ -72,6 +73,12 @@ GpuMaterial fetchMaterial(uint i) {
     GpuMaterial m;
     m.m0 = fetchF(uMaterials, base);
     m.m1 = fetchF(uMaterials, base + 1);
+    m.m2 = vec4(0.0f);
+    m.m3 = vec4(0.0f);
+    if (HAS_PBR) {  // only MAT_PBR reads them: other variants skip the two fetches
+        m.m2 = fetchF(uMaterials, base + 2);
+        m.m3 = fetchF(uMaterials, base + 3);
+    }
     return m;
 }
 

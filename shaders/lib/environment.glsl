@@ -83,11 +83,13 @@ vec3 envDirectLight(vec3 xo, vec3 ns, vec3 albedo, vec2 u, float pick, inout uin
 
 /// Radiance added by a ray escaping along d: under `mis` weighted against the environment sample
 /// that could have found it from the previous vertex (normal prevN; prevBsdfPdf > 0: a BSDF
-/// sample; 0: camera or specular, counted fully); under `light`, nothing after a vertex that did
-/// next-event estimation (countEmission false).
+/// sample; 0: camera or specular, counted fully); under `light`, nothing after a lambertian vertex
+/// that did next-event estimation (countEmission false), weighted as under mis after a MAT_PBR one.
 vec3 envEscaped(vec3 d, vec3 prevN, float prevBsdfPdf, bool countEmission) {
     if (!envOn()) return vec3(0.0f);
-    if (SAMPLER == SAMPLER_MIS) {
+    // `light` after a MAT_PBR vertex (countEmission and prevBsdfPdf set: lib/scatter_pbr.glsl)
+    // weights like mis; after a lambertian vertex it counts nothing (countEmission false).
+    if (SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && countEmission)) {
         float w = (prevBsdfPdf > 0.0f) ? powerHeuristic(prevBsdfPdf, envPickProb() * pdfEnv(d, prevN)) : 1.0f;
         return envRadiance(d) * w;
     }

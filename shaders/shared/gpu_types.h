@@ -41,22 +41,28 @@ struct GpuNode {
 const uint GPU_NODE_TEXELS = 4u;
 const uint GPU_NODE_EMPTY = 0xffffffffu;
 
-// ---- Materials (2 texels) ----------------------------------------------------------------------
+// ---- Materials (4 texels) ----------------------------------------------------------------------
 const uint MAT_LAMBERTIAN = 0u;
 const uint MAT_METAL = 1u;
 const uint MAT_DIELECTRIC = 2u;
 const uint MAT_DIFFUSE_LIGHT = 3u;
+const uint MAT_PBR = 4u;  // glTF metallic-roughness BRDF (shared/microfacet.h)
 // Flag bits above the type (bits 0-3 hold the type).
 const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
 const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
 const uint MATF_EMITS = 64u;          // emit != 0
-// m0.xyz: albedo (linear RGB), m0.w: bits of type | flags
+// m0.xyz: albedo (linear RGB; pbr: baseColorFactor), m0.w: bits of type | flags
 // m1.xyz: emitted radiance (linear RGB, W sr^-1 m^-2 in scene units), m1.w: fuzz (metal) or ior
+// m2 (pbr only): xyz = KHR_materials_specular specularColorFactor, w = specularFactor
+// m3 (pbr only): x = metallicFactor, y = roughnessFactor, zw = 0
+// The kernel fetches m2 and m3 only in variants with HAS_PBR (shaders/lib/bindings.glsl).
 struct GpuMaterial {
     vec4 m0;
     vec4 m1;
+    vec4 m2;
+    vec4 m3;
 };
-const uint GPU_MATERIAL_TEXELS = 2u;
+const uint GPU_MATERIAL_TEXELS = 4u;
 
 // ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
 // x: primitive index (bits), y: probability of picking it in proportion to emitted power (0 for

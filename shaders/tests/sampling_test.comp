@@ -1,6 +1,6 @@
 #version 460
 // Device test kernel for the shared sampling code (rng.h, onb.h, sampling.h, light_sampling.h,
-// scatter.h): evaluates the routine chosen by the push constant for `count` items, so a host test
+// scatter.h, microfacet.h): evaluates the routine chosen by the push constant for `count` items, so a host test
 // can compare the GPU results with the same headers compiled as C++.
 //
 // I/O layout (std430, every element a vec4):
@@ -39,12 +39,24 @@
 // 15 RECT_LIGHT   inputs as 8 (rect_sampling.h: solid angle, area fallback)
 //                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfRectLight(dir),
 //                 out1.z = 1 if the spherical rectangle is used, else 0
+// 16 GGX_VNDF     in0.xyz = v (local), in0.w = alpha, in1.xy = u     (microfacet.h)
+//                 out0.xyz = sampleGgxVndf(v, alpha, u), out0.w = pdfGgxVndf(v, out0.xyz, alpha),
+//                 out1.xyz = sampleGgxVisibleNormal(v, alpha, u), out1.w = pdfGgxVndfHalf(v, out1.xyz, alpha)
+// 17 GLTF_SAMPLE  material: in0.xyz = baseColor, in0.w = metallic, in1.xyz = specularColor,
+//                 in1.w = specularFactor, in2.x = roughness; in3.xyz = v (local), in2.yzw = u3
+//                 out0.xyz = sampleGltfBrdf(...), out0.w = its pdf, out1.x = pdfGltfBrdf(v, out0.xyz),
+//                 out1.y = gltfSpecularProbability(v), out1.z = ggxAlpha(roughness)
+// 18 GLTF_EVAL    material as 17; in3.xyz = v, in2.yzw = l (local)
+//                 out0.xyz = evalGltfBrdf(v, l), out0.w = pdfGltfBrdf(v, l),
+//                 out1.x = ggxVisibility(v, l, alpha), out1.y = ggxG1(v, alpha),
+//                 out1.z = ggxD(normalize(v + l), alpha) (0 when v + l = 0)
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
 #include "shared/rect_sampling.h"
 #include "shared/rng.h"
 #include "shared/scatter.h"
+#include "shared/microfacet.h"
 
 layout(local_size_x = 64) in;
 
@@ -71,6 +83,9 @@ const uint R_METAL = 12u;
 const uint R_DIELECTRIC = 13u;
 const uint R_FRESNEL = 14u;
 const uint R_RECT_LIGHT = 15u;
+const uint R_GGX_VNDF = 16u;
+const uint R_GLTF_SAMPLE = 17u;
+const uint R_GLTF_EVAL = 18u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -152,6 +167,28 @@ void main() {
         out0 = vec4(fresnelSchlick(in0.x, in0.y), fresnelDielectricExact(in0.x, in0.y),
                     dielectricReflectProbability(in0.x, in0.y, false),
                     dielectricReflectProbability(in0.x, in0.y, true));
+    }
+    if (r == R_GGX_VNDF) {
+        vec3 l = sampleGgxVndf(in0.xyz, in0.w, in1.xy);
+        vec3 h = sampleGgxVisibleNormal(in0.xyz, in0.w, in1.xy);
+        out0 = vec4(l, pdfGgxVndf(in0.xyz, l, in0.w));
+        out1 = vec4(h, pdfGgxVndfHalf(in0.xyz, h, in0.w));
+    } else if (r == R_GLTF_SAMPLE || r == R_GLTF_EVAL) {
+        GltfBrdf b = makeGltfBrdf(in0.xyz, in0.w, in2.x, in1.w, in1.xyz);
+        vec3 v = in3.xyz;
+        if (r == R_GLTF_SAMPLE) {
+            float pdf;
+            vec3 l = sampleGltfBrdf(b, v, in2.yzw, pdf);
+            out0 = vec4(l, pdf);
+            out1 = vec4(pdfGltfBrdf(b, v, l), gltfSpecularProbability(b, v), b.alpha, 0.0);
+        } else {
+            vec3 l = in2.yzw;
+            vec3 hv = v + l;
+            float len2 = dot(hv, hv);
+            out0 = vec4(evalGltfBrdf(b, v, l), pdfGltfBrdf(b, v, l));
+            out1 = vec4(ggxVisibility(v, l, b.alpha), ggxG1(v, b.alpha),
+                        len2 > 0.0 ? ggxD(hv / sqrt(len2), b.alpha) : 0.0, 0.0);
+        }
     }
     outData[2u * i + 0u] = out0;
     outData[2u * i + 1u] = out1;

@@ -11,6 +11,7 @@
 
 #include "sampling_test.spv.h"
 #include "shared/light_sampling.h"
+#include "shared/microfacet.h"
 #include "shared/rect_sampling.h"
 #include "shared/rng.h"
 #include "shared/scatter.h"
@@ -157,6 +158,30 @@ Out hostSamplingKernel(Routine r, const Item& it) {
                     gpu::dielectricReflectProbability(in0.x, in0.y, false),
                     gpu::dielectricReflectProbability(in0.x, in0.y, true));
         break;
+    case kGgxVndf: {
+        const vec3 v = xyz(in0), l = gpu::sampleGgxVndf(v, in0.w, vec2(in1)), h = gpu::sampleGgxVisibleNormal(v, in0.w, vec2(in1));
+        out0 = vec4(l, gpu::pdfGgxVndf(v, l, in0.w));
+        out1 = vec4(h, gpu::pdfGgxVndfHalf(v, h, in0.w));
+        break;
+    }
+    case kGltfSample:
+    case kGltfEval: {
+        const gpu::GltfBrdf b = gpu::makeGltfBrdf(xyz(in0), in0.w, in2.x, in1.w, xyz(in1));
+        const vec3 v = xyz(in3), u3(in2.y, in2.z, in2.w);
+        if (r == kGltfSample) {
+            float pdf = 0.0f;
+            const vec3 l = gpu::sampleGltfBrdf(b, v, u3, pdf);
+            out0 = vec4(l, pdf);
+            out1 = vec4(gpu::pdfGltfBrdf(b, v, l), gpu::gltfSpecularProbability(b, v), b.alpha, 0.0f);
+        } else {
+            const vec3 l = u3, hv = v + l;
+            const float len2 = glm::dot(hv, hv);
+            out0 = vec4(gpu::evalGltfBrdf(b, v, l), gpu::pdfGltfBrdf(b, v, l));
+            out1 = vec4(gpu::ggxVisibility(v, l, b.alpha), gpu::ggxG1(v, b.alpha),
+                        len2 > 0.0f ? gpu::ggxD(hv / std::sqrt(len2), b.alpha) : 0.0f, 0.0f);
+        }
+        break;
+    }
     }
     return o;
 }

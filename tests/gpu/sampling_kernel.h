@@ -1,6 +1,6 @@
 // Harness of the test_gpu_sampling*.cpp tests: runs the device test kernel
 // shaders/tests/sampling_test.comp (the GLSL build of shaders/shared/{rng,onb,sampling,
-// light_sampling,scatter}.h; I/O layout and routine ids at its top) and its C++ twin (the same
+// light_sampling,scatter,microfacet}.h; I/O layout and routine ids at its top) and its C++ twin (the same
 // main() with vkp::gpu), and compares their outputs item by item.
 #pragma once
 #include <bit>
@@ -23,7 +23,8 @@ using glm::vec4;
 /// Routine ids of sampling_test.comp (push constant `routine`).
 enum Routine : std::uint32_t {
     kRng, kOnb, kCosineHemi, kUniformSphere, kUniformHemi, kUniformCone, kUniformDisk, kUniformBall,
-    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight
+    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight,
+    kGgxVndf, kGltfSample, kGltfEval
 };
 
 /// Inputs in0..in3 of one item (binding 0: four vec4 per item).

@@ -17,7 +17,8 @@
 // mirror ray in the tangent plane, a sample on a light's edge or on a cone's rim), either branch is
 // accepted there and nowhere else, and the flips are counted in the printed summary.
 // Lights: test_gpu_sampling_lights.cpp; chi-square tests of the device's samples:
-// test_gpu_sampling_stats.cpp.
+// test_gpu_sampling_stats.cpp; the glTF BRDF (microfacet.h, ids 16-18):
+// test_gpu_sampling_microfacet.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

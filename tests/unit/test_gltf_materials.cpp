@@ -47,9 +47,11 @@ TEST_F(Materials, Factors) {
     EXPECT_EQ(m.pbr.specular, 1.0f);
     EXPECT_EQ(m.pbr.alphaMode, AlphaMode::Opaque);
     EXPECT_FALSE(m.pbr.baseColorTexture.valid());
-    const Material k = kernelMaterial(m);
-    EXPECT_EQ(k.type, MaterialType::Lambertian);
+    const Material k = kernelMaterial(m);  // opaque: the glTF BRDF itself
+    EXPECT_EQ(k.type, MaterialType::Pbr);
     EXPECT_EQ(k.albedo, glm::vec3(0.8f, 0.2f, 0.1f));
+    EXPECT_EQ(k.pbr.metallic, 0.25f);
+    EXPECT_EQ(k.pbr.roughness, 0.6f);
 }
 
 TEST_F(Materials, TexturesSamplersAndTextureTransform) {
@@ -172,9 +174,10 @@ TEST_F(Materials, TransmissionIorSpecularAlphaAndDefault) {
     EXPECT_EQ(def.pbr.metallic, 1.0f);
     EXPECT_EQ(def.pbr.roughness, 1.0f);
     const Material kd = kernelMaterial(def);
-    EXPECT_EQ(kd.type, MaterialType::Metal);
+    EXPECT_EQ(kd.type, MaterialType::Pbr);  // the glTF BRDF of the default material: a rough white metal
     EXPECT_EQ(kd.albedo, glm::vec3(1.0f));
-    EXPECT_EQ(kd.fuzz, 1.0f);
+    EXPECT_EQ(kd.pbr.metallic, 1.0f);
+    EXPECT_EQ(kd.pbr.roughness, 1.0f);
 }
 
 TEST(GltfEmissive, GlbWithEmbeddedImageAndSingleAndDoubleSidedLights) {

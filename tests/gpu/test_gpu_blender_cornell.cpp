@@ -1,0 +1,152 @@
+// The Blender-exported Cornell box (../shared/scenes/blender-cornell-classic/cornell-rtiow.gltf:
+// glTF PBR walls with roughness 1, metallic 0 and the default specular layer, F0 = 0.04) against
+// the all-Lambertian scenes/cornell-classic.json with the same geometry, light and camera
+// (label gpu; both rendered at 24 x 24 with mis):
+//  1. with its specular layer the glTF image differs from the JSON image by more than noise (the
+//     glTF BRDF is really rendered). The issue also asks that they agree "within the few percent
+//     that the specular layer explains": DISABLED_SpecularLayerWithinFewPercent holds that check
+//     with the bound kSpecularBound = 5% set before measuring; it FAILS today: measured (mis,
+//     24 x 24, 1024 spp) R -8.7%, G -6.3%, B -4.2% (the glTF image is darker). The cause is the
+//     energy-conserving base weight 1 - F(n.v) of shaders/shared/microfacet.h, which discards
+//     energy at grazing views of rough dielectrics (hemispherical albedo of a white roughness-1
+//     dielectric ~0.92 instead of ~1): see README "Materials". (Experiment: with appendix B's
+//     literal base weight 1 - F(v.h), which fails the white furnace, the difference was R -1.0%,
+//     G -0.2%, B +0.3%.)
+//  2. with KHR_materials_specular { specularFactor: 0 } added to every material (a modified copy
+//     written to a temporary directory, .bin copied beside it) the glTF BRDF is exactly the
+//     Lambertian base: the two images agree within noise (image and 6 x 6-pixel blocks, z-tests).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "gpu_env.h"
+#include "scene/gltf.h"
+#include "test_gpu_analytic_common.h"
+#include "test_paths.h"
+
+namespace vkp::test {
+namespace {
+
+[[maybe_unused]] ::testing::Environment* const kBudget =
+    ::testing::AddGlobalTestEnvironment(new ZBudgetEnvironment(100, 0.01));
+
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kSize = 24, kSpp = 1024;
+
+/// The largest relative difference of the image means that the specular layer may explain (set
+/// before measuring, from the normal-incidence reflectance alone: a white wall (albedo 0.73)
+/// reflects (1 - F) 0.73 + ~0.04 instead of 0.73, +1.5% per bounce, a few percent over the
+/// box's bounces). Grazing views turned out to matter more (file comment).
+constexpr double kSpecularBound = 0.05;
+
+fs::path blenderCornell() { return sharedScenesDir() / "blender-cornell-classic" / "cornell-rtiow.gltf"; }
+
+Scene prepare(Scene s, std::uint32_t seed) {
+    s.camera.width = s.camera.height = kSize;
+    s.render.seed = seed;
+    s.render.maxDepth = 50;
+    return s;
+}
+
+/// A copy of the glTF with KHR_materials_specular { specularFactor: 0 } on every material.
+fs::path withoutSpecular(const fs::path& src) {
+    const fs::path dir = fs::temp_directory_path() / ("vkpath-blender-cornell-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ifstream in(src);
+    nlohmann::json j = nlohmann::json::parse(in);
+    for (auto& m : j["materials"]) m["extensions"]["KHR_materials_specular"] = {{"specularFactor", 0.0}};
+    auto& used = j["extensionsUsed"];
+    if (std::find(used.begin(), used.end(), "KHR_materials_specular") == used.end()) used.push_back("KHR_materials_specular");
+    for (const auto& b : j["buffers"]) {
+        const std::string uri = b["uri"];
+        fs::copy_file(src.parent_path() / uri, dir / uri, fs::copy_options::overwrite_existing);
+    }
+    const fs::path out = dir / src.filename();
+    std::ofstream(out) << j.dump(1);
+    return out;
+}
+
+Estimate difference(const PixelStats& a, const PixelStats& b, const std::vector<Pixel>& px, int c) {
+    const Estimate ea = average(a, px, c), eb = average(b, px, c);
+    Estimate d = ea;
+    d.mean = ea.mean - eb.mean;
+    d.var = ea.var + eb.var;
+    return d;
+}
+
+class BlenderCornellRender : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fs::exists(blenderCornell())) GTEST_SKIP() << "no " << blenderCornell();
+    }
+};
+
+/// Relative difference and z of the image means, glTF (with its specular layer) - JSON, per channel.
+struct Comparison {
+    double rel[3], z[3];
+};
+
+Comparison compareWithSpecularLayer(VulkanDevice& dev) {
+    const Scene g = loadSceneGltf(blenderCornell());
+    EXPECT_TRUE(g.warnings.empty());
+    const PixelStats sg(renderSums(dev, prepare(g, 61), Sampler::Mis, kSpp, "blender cornell"));
+    const PixelStats sj(renderSums(dev, prepare(loadSceneJson(scenesDir() / "cornell-classic.json"), 62), Sampler::Mis, kSpp,
+                                   "cornell-classic"));
+    const std::vector<Pixel> image = rect(0, 0, kSize, kSize);
+    Comparison out{};
+    for (int c = 0; c < 3; ++c) {
+        const Estimate a = average(sg, image, c), b = average(sj, image, c), d = difference(sg, sj, image, c);
+        out.rel[c] = a.mean / b.mean - 1.0;
+        out.z[c] = d.mean / std::sqrt(d.var);
+        std::printf("  %s: glTF (specular layer) %.5f, JSON (Lambertian) %.5f: %+.2f%% = %+.1f standard errors\n", kChannel[c],
+                    a.mean, b.mean, 100.0 * out.rel[c], out.z[c]);
+    }
+    return out;
+}
+
+TEST_F(BlenderCornellRender, SpecularLayerIsVisible) {
+    VKP_REQUIRE_DEVICE(dev);
+    const Comparison r = compareWithSpecularLayer(dev);
+    // The difference is far outside the noise in every channel (the specular layer is rendered).
+    for (int c = 0; c < 3; ++c) EXPECT_GT(std::abs(r.z[c]), zBudget().take()) << kChannel[c];
+}
+
+// Disabled: fails today (see the file comment). Run with --gtest_also_run_disabled_tests.
+TEST_F(BlenderCornellRender, DISABLED_SpecularLayerWithinFewPercent) {
+    VKP_REQUIRE_DEVICE(dev);
+    const Comparison r = compareWithSpecularLayer(dev);
+    for (int c = 0; c < 3; ++c) EXPECT_LE(std::abs(r.rel[c]), kSpecularBound) << kChannel[c];
+}
+
+TEST_F(BlenderCornellRender, SpecularFactorZeroEqualsLambertianWithinNoise) {
+    VKP_REQUIRE_DEVICE(dev);
+    const fs::path modified = withoutSpecular(blenderCornell());
+    const Scene g = loadSceneGltf(modified);
+    fs::remove_all(modified.parent_path());
+    ASSERT_TRUE(g.warnings.empty()) << g.warnings.front();
+    for (const Material& m : g.materials)
+        if (!m.emits()) ASSERT_EQ(m.pbr.specular, 0.0f) << m.name;
+    const PixelStats sg(renderSums(dev, prepare(g, 63), Sampler::Mis, kSpp, "blender cornell, specularFactor 0"));
+    const PixelStats sj(renderSums(dev, prepare(loadSceneJson(scenesDir() / "cornell-classic.json"), 64), Sampler::Mis, kSpp,
+                                   "cornell-classic"));
+    std::vector<std::pair<std::string, std::vector<Pixel>>> regions = {{"image", rect(0, 0, kSize, kSize)}};
+    for (std::uint32_t by = 0; by < kSize; by += 6)
+        for (std::uint32_t bx = 0; bx < kSize; bx += 6)
+            regions.push_back({"block " + std::to_string(bx) + "," + std::to_string(by), rect(bx, by, bx + 6, by + 6)});
+    for (const auto& [name, px] : regions)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_TRUE(withinNoise(difference(sg, sj, px, c), 0.0,
+                                    "glTF specularFactor 0 - JSON, " + name + ", " + kChannel[c], name == "image"));
+}
+
+}  // namespace
+}  // namespace vkp::test
