@@ -50,6 +50,10 @@
 //                 out0.xyz = evalGltfBrdf(v, l), out0.w = pdfGltfBrdf(v, l),
 //                 out1.x = ggxVisibility(v, l, alpha), out1.y = ggxG1(v, alpha),
 //                 out1.z = ggxD(normalize(v + l), alpha) (0 when v + l = 0)
+// 19 LIGHT_PICK   in0.x = u, in0.y = bits of the light count n, in0.z = bits of the item index t
+//                 where the table starts: item t + j holds light j's GpuLight in its in0
+//                 (light_pick.h alias pick, as scene_lights.glsl pickLightPower does it)
+//                 out0.x = bits of the picked light, out0.y = the probability its entry reports
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
@@ -57,6 +61,7 @@
 #include "shared/rng.h"
 #include "shared/scatter.h"
 #include "shared/microfacet.h"
+#include "shared/light_pick.h"
 
 layout(local_size_x = 64) in;
 
@@ -86,6 +91,7 @@ const uint R_RECT_LIGHT = 15u;
 const uint R_GGX_VNDF = 16u;
 const uint R_GLTF_SAMPLE = 17u;
 const uint R_GLTF_EVAL = 18u;
+const uint R_LIGHT_PICK = 19u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -188,6 +194,18 @@ void main() {
             out0 = vec4(evalGltfBrdf(b, v, l), pdfGltfBrdf(b, v, l));
             out1 = vec4(ggxVisibility(v, l, b.alpha), ggxG1(v, b.alpha),
                         len2 > 0.0 ? ggxD(hv / sqrt(len2), b.alpha) : 0.0, 0.0);
+        }
+    }
+    if (r == R_LIGHT_PICK) {
+        uint n = floatBitsToUint(in0.y);
+        uint start = floatBitsToUint(in0.z);
+        if (n > 0u) {
+            float frac;
+            uint col = aliasColumn(in0.x, n, frac);
+            GpuLight e;
+            e.l0 = inData[4u * (start + col)];
+            uint li = aliasResolve(col, frac, e);
+            out0 = vec4(uintBitsToFloat(li), inData[4u * (start + li)].y, 0.0, 0.0);
         }
     }
     outData[2u * i + 0u] = out0;

@@ -332,6 +332,61 @@ TEST(LightStats, SphereConeDistanceIsNearIntersection) {
     }
 }
 
+// Tiny, distant spheres (issue 5: "a small-angle form that stays accurate"): the cone's
+// 1 - cos(theta_max) is formed as s2 / (1 + cos) from s2 = (R/d)^2, never as 1 - sqrt(1 - s2),
+// which cancels in float (4.6% off at R/d = 1e-3, 0 - an infinite pdf - below R/d ~ 2.4e-4).
+// For R/d from 1e-2 to 1e-7: (a) the pdf times the exact solid angle (double) is 1 within 1e-5;
+// (b) down to R/d = 1e-5 (a cone of ~170 float ulps of a unit vector) every sampled direction lies
+// in the cone (up to the rounding of a float direction) and its point on the sphere, and the directions are uniform over the cone's disk:
+// chi-square of (r^2 = sin^2 / s2, phi) on a 10 x 10 grid (uniform up to O(s2) = 1e-6), run at
+// statsAlpha() like the rest of the suite (one test of the budget).
+TEST(LightStats, SphereConeSmallAngleStaysAccurate) {
+    const float R = 1.0e-3f;
+    const vec3 p(0.25f, -0.5f, 0.125f);
+    const vec3 axis = glm::normalize(vec3(0.3f, 0.8f, -0.52f));
+    for (double k : {1e2, 1e3, 1e4, 1e5, 1e6, 1e7}) {
+        SCOPED_TRACE(k);
+        const vec3 c = p + float(k * R) * axis;
+        const double d = glm::length(glm::dvec3(c) - glm::dvec3(p));
+        const double s2 = (double(R) / d) * (double(R) / d);
+        const double omExact = s2 / (1.0 + std::sqrt(1.0 - s2));  // 1 - cos(theta_max), exact in double
+        const float sinMaxF = float(double(R) / d);
+        const float naive = 1.0f - std::sqrt(1.0f - sinMaxF * sinMaxF);  // the cancelling form
+        if (k >= 1e3) EXPECT_GT(std::fabs(naive / omExact - 1.0), 0.04) << "the textbook form should fail here";
+        UniformSource rng(219);
+        std::vector<glm::dvec2> cells;
+        for (int i = 0; i < (k <= 1e5 ? kSamples : 1000); ++i) {
+            const gpu::LightSample s = gpu::sampleSphereLight(c, R, p, rng.next2());
+            ASSERT_GT(s.pdf, 0.0f);
+            ASSERT_NEAR(double(s.pdf) * 2.0 * kPi * omExact, 1.0, 1e-5);
+            if (k > 1e5) continue;
+            const glm::dvec3 w = glm::dvec3(s.dir) / glm::length(glm::dvec3(s.dir));
+            const glm::dvec3 a = (glm::dvec3(c) - glm::dvec3(p)) / d;
+            const glm::dvec3 cr = glm::cross(w, a);
+            const double sin2 = glm::dot(cr, cr);
+            // In the cone, up to the rounding of a float unit vector (~4 eps of angle).
+            ASSERT_LE(std::sqrt(sin2), std::sqrt(s2) + 4.0 * std::ldexp(1.0, -24));
+            const glm::dvec3 x = glm::dvec3(p) + double(s.dist) * glm::dvec3(s.dir);
+            ASSERT_NEAR(glm::length(x - glm::dvec3(c)) / R, 1.0, 2e-2);  // float dist and dir at d = 1e5 R
+            if (k == 1e4) {
+                // (r^2, phi) in the cone's disk: r^2 = sin^2 / s2, phi from a frame around the axis.
+                const glm::dvec3 t = glm::normalize(glm::cross(a, glm::dvec3(1, 0, 0)));
+                const glm::dvec3 b = glm::cross(a, t);
+                cells.push_back(glm::dvec2(sin2 / s2, std::atan2(glm::dot(w, b), glm::dot(w, t))));
+            }
+        }
+        if (k == 1e4) {
+            Grid2D g;
+            g.x0 = 0.0;
+            g.x1 = 1.0 + 1e-3;
+            g.y0 = -kPi;
+            g.y1 = kPi;
+            g.nx = g.ny = 10;
+            EXPECT_TRUE(passesChi2(chi2Test2D(cells, g, [](double r2, double) { return r2 <= 1.0 ? 1.0 / (2.0 * kPi) : 0.0; })));
+        }
+    }
+}
+
 // ---- No NaN or Inf, whatever the geometry
 // ---------------------------------------------------------
 
