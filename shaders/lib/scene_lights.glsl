@@ -9,11 +9,14 @@
 #include "shared/light_pick.h"
 #include "shared/light_sampling.h"
 #include "shared/rect_sampling.h"
+#include "shared/triangle_sampling.h"
 
 uint lightCount() { return frame.counts.x; }
 
-// Quads: the book's uniform area sampling for `mixture` (exactly as the book defines it), solid-angle
-// sampling of rectangles (Urena et al. 2013, area as its fallback) for next-event estimation.
+// Quads and triangles: the book's uniform area sampling for `mixture` (exactly as the book defines
+// it); for next-event estimation solid-angle sampling of rectangles (Urena et al. 2013) and of
+// triangles (Arvo 1995), area sampling as their fallback (shared/rect_sampling.h,
+// shared/triangle_sampling.h).
 const bool SOLID_ANGLE_QUADS = SAMPLER != SAMPLER_MIXTURE;
 
 /// Direction towards a point sampled on primitive p as seen from x (pdf 0: no sample).
@@ -30,7 +33,8 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
         s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi) : sampleQuadLight(p0, e1, e2, x, xi);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE) s = sampleTriangleLight(p0, e1, e2, x, xi);
+    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
+        s = SOLID_ANGLE_QUADS ? sampleTriangleLightSolidAngle(p0, e1, e2, x, xi) : sampleTriangleLight(p0, e1, e2, x, xi);
     return s;
 }
 
@@ -45,7 +49,8 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
         pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d) : pdfQuadLight(p0, e1, e2, x, d);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE) pdf = pdfTriangleLight(p0, e1, e2, x, d);
+    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
+        pdf = SOLID_ANGLE_QUADS ? pdfTriangleLightSolidAngle(p0, e1, e2, x, d) : pdfTriangleLight(p0, e1, e2, x, d);
     return pdf;
 }
 

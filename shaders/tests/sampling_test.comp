@@ -54,6 +54,9 @@
 //                 where the table starts: item t + j holds light j's GpuLight in its in0
 //                 (light_pick.h alias pick, as scene_lights.glsl pickLightPower does it)
 //                 out0.x = bits of the picked light, out0.y = the probability its entry reports
+// 20 SPH_TRI_LIGHT inputs as 9 (triangle_sampling.h: solid angle, area fallback)
+//                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfTriangleLightSolidAngle(dir),
+//                 out1.z = 1 if the spherical triangle is used, else 0
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
@@ -62,6 +65,7 @@
 #include "shared/scatter.h"
 #include "shared/microfacet.h"
 #include "shared/light_pick.h"
+#include "shared/triangle_sampling.h"
 
 layout(local_size_x = 64) in;
 
@@ -92,6 +96,7 @@ const uint R_GGX_VNDF = 16u;
 const uint R_GLTF_SAMPLE = 17u;
 const uint R_GLTF_EVAL = 18u;
 const uint R_LIGHT_PICK = 19u;
+const uint R_SPH_TRI_LIGHT = 20u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -153,6 +158,12 @@ void main() {
         out1.x = s.pdf;
         out1.y = pdfRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
         out1.z = useSphericalRect(in1.xyz, in2.xyz, sphericalRectInit(in0.xyz, in1.xyz, in2.xyz, in3.xyz)) ? 1.0 : 0.0;
+    } else if (r == R_SPH_TRI_LIGHT) {
+        LightSample s = sampleTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w));
+        out0 = vec4(s.dir, s.dist);
+        out1.x = s.pdf;
+        out1.y = pdfTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
+        out1.z = useSphericalTriangle(triangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz)) ? 1.0 : 0.0;
     } else if (r == R_SPHERE_LIGHT) {
         LightSample s = sampleSphereLight(in0.xyz, in0.w, in3.xyz, in1.xy);
         out0 = vec4(s.dir, s.dist);

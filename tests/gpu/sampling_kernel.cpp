@@ -13,6 +13,7 @@
 #include "shared/light_sampling.h"
 #include "shared/microfacet.h"
 #include "shared/rect_sampling.h"
+#include "shared/triangle_sampling.h"
 #include "shared/rng.h"
 #include "shared/scatter.h"
 #include "stat_suite.h"
@@ -117,6 +118,15 @@ Out hostSamplingKernel(Routine r, const Item& it) {
         vec2 inv = tri ? gpu::invertTriangleLight(a, b, c, p, s.dir) : gpu::invertQuadLight(a, b, c, p, s.dir);
         out1.z = inv.x;
         out1.w = inv.y;
+        break;
+    }
+    case kSphTriLight: {
+        const vec3 a = xyz(in0), b = xyz(in1), e = xyz(in2), p = xyz(in3);
+        gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(a, b, e, p, vec2(in0.w, in1.w));
+        out0 = vec4(s.dir, s.dist);
+        out1.x = s.pdf;
+        out1.y = gpu::pdfTriangleLightSolidAngle(a, b, e, p, s.dir);
+        out1.z = gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(a, b, e, p)) ? 1.0f : 0.0f;
         break;
     }
     case kRectLight: {

@@ -12,6 +12,7 @@
 #include "gpu_env.h"
 #include "sampling_kernel.h"
 #include "shared/light_sampling.h"
+#include "shared/triangle_sampling.h"
 #include "stat_suite.h"
 
 namespace vkp::test {
@@ -111,6 +112,19 @@ TEST(GpuSamplingStats, QuadLight) {
 TEST(GpuSamplingStats, TriangleLight) {
     VKP_REQUIRE_DEVICE(dev);
     expectPlanarFits(dev, {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.2f}, {0.3f, 1.2f, 0.0f}, {0.5f, 0.3f, 0.6f}}, true, 503);
+}
+
+// The GLSL build of Arvo's spherical triangle sampling (triangle_sampling.h) from a point where it
+// is used (S ~ 0.8 sr), fitted to its own pdf (1/S over the triangle).
+TEST(GpuSamplingStats, SphericalTriangleLight) {
+    VKP_REQUIRE_DEVICE(dev);
+    const PlanarCase pc{{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.2f}, {0.3f, 1.2f, 0.0f}, {0.5f, 0.3f, 0.6f}};
+    ASSERT_TRUE(gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(pc.q, pc.e1, pc.e2, pc.p)));
+    const auto dirs = deviceDirections(dev, kSphTriLight, 504, [&](vec2 xi) {
+        return item(vec4(pc.q, xi.x), vec4(pc.e1, xi.y), vec4(pc.e2, 0.0f), vec4(pc.p, 0.0f));
+    });
+    expectFits(dirs, planarCap(pc, true),
+               [&](const dvec3& d) { return double(gpu::pdfTriangleLightSolidAngle(pc.q, pc.e1, pc.e2, pc.p, vec3(d))); });
 }
 
 void expectSphereFits(VulkanDevice& dev, const SphereCase& s, std::uint32_t expectedStrategy, std::uint32_t seed) {

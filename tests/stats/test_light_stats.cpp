@@ -16,6 +16,7 @@
 
 #include "shared/light_sampling.h"
 #include "shared/rect_sampling.h"
+#include "shared/triangle_sampling.h"
 #include "stat_suite.h"
 
 namespace {
@@ -252,6 +253,97 @@ TEST(LightStats, TriangleGrazing) {
     vec3 n = glm::normalize(glm::cross(kE1, kE2));
     vec3 p = kV0 - 1.2f * kE1 + 0.4f * kE2 + 0.05f * n;
     checkLight(triangleCase("triangle grazing", kV0, kE1, kE2, p), 207);
+}
+
+// ---- Triangles, uniform in solid angle (Arvo 1995; area sampling as fallback) ------------------
+
+LightCase sphTriCase(const std::string& name, vec3 v0, vec3 e1, vec3 e2, vec3 p, bool expectSolidAngle) {
+    LightCase c;
+    c.name = name;
+    c.sample = [=](vec2 xi) { return gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, xi); };
+    c.pdf = [=](vec3 d) { return gpu::pdfTriangleLightSolidAngle(v0, e1, e2, p, d); };
+    c.binning = planarBinning(p, v0, e1, e2, true);
+    EXPECT_EQ(gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(v0, e1, e2, p)), expectSolidAngle) << name;
+    return c;
+}
+
+TEST(LightStats, SphericalTriangleNear) {
+    checkLight(sphTriCase("spherical triangle near", kV0, kE1, kE2, vec3(0.3f, 0.4f, 0.5f), true), 221);
+}
+TEST(LightStats, SphericalTriangleVeryNear) {
+    // 0.02 above the triangle's interior: S close to 2 pi (but below the fallback).
+    vec3 n = glm::normalize(glm::cross(kE1, kE2));
+    checkLight(sphTriCase("spherical triangle very near", kV0, kE1, kE2, kV0 + 0.3f * kE1 + 0.3f * kE2 + 0.02f * n, true),
+               222);
+}
+TEST(LightStats, SphericalTriangleGrazingFromBehind) {
+    vec3 n = glm::normalize(glm::cross(kE1, kE2));
+    vec3 p = kV0 - 0.4f * kE1 + 0.4f * kE2 - 0.05f * n;  // 0.05 behind its plane, 0.4 beyond an edge
+    checkLight(sphTriCase("spherical triangle grazing", kV0, kE1, kE2, p, true), 223);
+}
+TEST(LightStats, SphericalTriangleTinyFallsBackToArea) {
+    checkLight(sphTriCase("spherical triangle tiny", kV0, kE1, kE2, vec3(-30.0f, 60.0f, 45.0f), false), 224);
+}
+// The pdf is the constant 1/S: for the octant triangle (1,0,0), (0,1,0), (0,0,1) seen from the
+// origin S = pi/2 exactly, and every sampled direction has positive coordinates.
+TEST(LightStats, SphericalTriangleSolidAngleIsExact) {
+    const vec3 v0(1, 0, 0), e1(-1, 1, 0), e2(-1, 0, 1), p(0, 0, 0);
+    EXPECT_NEAR(gpu::triangleLightSolidAngle(v0, e1, e2, p), kPi / 2, 1e-6);
+    UniformSource rng(225);
+    for (int i = 0; i < 10000; ++i) {
+        const gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, rng.next2());
+        ASSERT_NEAR(s.pdf, 2.0 / kPi, 1e-6);
+        ASSERT_GE(std::min(s.dir.x, std::min(s.dir.y, s.dir.z)), -1e-6f);
+        ASSERT_NEAR(s.dir.x + s.dir.y + s.dir.z, 1.0f / s.dist, 1e-4f);  // the point lies on x + y + z = 1
+    }
+}
+
+// Which triangle sampler the numbers favour (issue 5: "area or spherical triangle sampling
+// (Arvo), whichever the numbers favour"): the variance of the one-sample irradiance estimate
+// cos_x / pdf at a point x (normal n, towards the light) under a triangle of radiance 1, for a
+// light near, at mid distance and far. Solid-angle sampling removes the 1/r^2 cos_light factor
+// from the weight, leaving only cos_x: its variance is 21.5x lower near, 14.1x at mid distance, and
+// identical far, where it falls back to area sampling (same code path). Deterministic (fixed seed,
+// 200k samples); the assertions (>= 10x, >= 5x, equal) are far from the sampling error of the
+// ratios. On the device, cornell-classic with its light as two triangles (64x64, 64 spp, mis):
+// relMSE 0.00498 (area) -> 0.00486 (solid angle); the ceiling light is small and far from most of
+// the box, so the image gains little; a large light near surfaces gains the factors above.
+TEST(LightStats, SphericalTriangleVarianceIsLowerNearTheLight) {
+    const vec3 n(0.0f, 0.0f, 1.0f);
+    struct Geometry {
+        const char* name;
+        vec3 v0, e1, e2;
+        double minRatio;  ///< area variance / solid-angle variance must be at least this (0: equal)
+    };
+    const Geometry cases[] = {
+        {"near (0.3 below a unit triangle)", vec3(-0.4f, -0.3f, 0.3f), vec3(1.0f, 0.1f, 0.0f), vec3(0.2f, 1.0f, 0.1f), 10.0},
+        {"mid (3 below, off axis)", vec3(1.0f, -0.5f, 3.0f), vec3(1.0f, 0.1f, 0.0f), vec3(0.2f, 1.0f, 0.1f), 5.0},
+        {"far (falls back to area)", vec3(10.0f, 5.0f, 60.0f), vec3(1.0f, 0.1f, 0.0f), vec3(0.2f, 1.0f, 0.1f), 0.0},
+    };
+    for (const Geometry& g : cases) {
+        double m[2] = {0, 0}, q[2] = {0, 0};
+        const int N = 200000;
+        for (int k = 0; k < 2; ++k) {
+            UniformSource rng(226);
+            for (int i = 0; i < N; ++i) {
+                const vec2 xi = rng.next2();
+                const gpu::LightSample ls = k == 0 ? gpu::sampleTriangleLight(g.v0, g.e1, g.e2, vec3(0.0f), xi)
+                                                   : gpu::sampleTriangleLightSolidAngle(g.v0, g.e1, g.e2, vec3(0.0f), xi);
+                const double f = (ls.pdf > 0.0f) ? std::max(0.0, double(glm::dot(ls.dir, n))) / ls.pdf : 0.0;
+                m[k] += f;
+                q[k] += f * f;
+            }
+        }
+        const double mean0 = m[0] / N, mean1 = m[1] / N;
+        const double var0 = q[0] / N - mean0 * mean0, var1 = q[1] / N - mean1 * mean1;
+        std::printf("    [%s] irradiance %.5f (area) %.5f (solid angle); variance area / solid angle = %.3f\n", g.name,
+                    mean0, mean1, var0 / var1);
+        EXPECT_NEAR(mean0, mean1, 4.0 * std::sqrt((var0 + var1) / N));
+        if (g.minRatio > 0.0)
+            EXPECT_GE(var0 / var1, g.minRatio) << g.name;
+        else
+            EXPECT_EQ(var0, var1) << g.name << ": the fallback should be area sampling itself";
+    }
 }
 
 // ---- Spheres ------------------------------------------------------------------------------------
