@@ -8,6 +8,7 @@
 #include "pathtrace.spv.h"
 #include "render/environment.h"
 #include "render/adaptive.h"
+#include "render/ggx_albedo_table.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
 #include "vk/buffer.h"
@@ -93,12 +94,22 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
-    const gpu::GpuFrame frame = packFrame(scene);
+    gpu::GpuFrame frame = packFrame(scene);
+    // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
+    std::vector<glm::vec4> materialTexels;
+    for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
+        for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3}) materialTexels.push_back(t);
+    static_assert(gpu::GPU_MATERIAL_TEXELS == 4, "one push_back per GpuMaterial member");
+    frame.counts.w = std::uint32_t(materialTexels.size());
+    if (features_.pbr) {
+        const std::vector<glm::vec4>& table = ggxAlbedoTable();
+        materialTexels.insert(materialTexels.end(), table.begin(), table.end());
+    }
     impl_->frame = std::make_unique<GpuBuffer>(device, sizeof(frame), vk::BufferUsageFlagBits::eUniformBuffer);
     impl_->frame->upload(&frame, sizeof(frame));
     impl_->nodes = uploadTexels(device, bvh.nodes);
     impl_->prims = uploadTexels(device, bvh.prims);
-    impl_->materials = uploadTexels(device, packMaterials(scene.materials));
+    impl_->materials = uploadTexels(device, materialTexels);
     impl_->lights = uploadTexels(device, packLights(scene, primOfShape));
     impl_->nodesView = impl_->nodes->texelView();
     impl_->primsView = impl_->prims->texelView();

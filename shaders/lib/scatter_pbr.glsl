@@ -12,6 +12,10 @@
 #define VKP_SCATTER_PBR_GLSL
 #include "shared/microfacet.h"
 
+/// microfacet.h's table access: the GGX albedo table follows the materials in their texel buffer
+/// (host/render/ggx_albedo_table.cpp, renderer.cpp).
+vec4 ggxAlbedoFetch(uint t) { return fetchF(uMaterials, int(frame.counts.w + t)); }
+
 /// Next-event estimation towards the environment (picked with probability pick) from a MAT_PBR
 /// vertex: f cos L w / (pick pdf) if the shadow ray to infinity escapes, w the power heuristic
 /// against the BRDF sample (light and mis alike, see above).

@@ -86,7 +86,8 @@ struct GpuFrame {
     vec4 background;  // rgb: radiance of escaping rays
     uvec4 size;       // x: width, y: height, z: max_depth, w: seed
     uvec4 counts;     // x: number of sampled objects (lights), y: Russian-roulette start depth,
-                      // z: number of them that emit (power-proportional picks need > 0), w: 0
+                      // z: number of them that emit (power-proportional picks need > 0),
+                      // w: texel of the GGX albedo table in the materials buffer (after the materials)
     uvec4 tiles;      // x: workgroups per row, y: workgroups in all, z: tile stride (coprime
                       // with y, y * z < 2^32): workgroup g renders tile (g * z) mod y, w: reserved
     vec4 env;         // environment light (lib/environment.glsl): x, y: cos, sin of rotate_y;

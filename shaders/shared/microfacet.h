@@ -26,11 +26,16 @@
 // directional albedo 1.03 at 60 degrees, 1.20 at 75, 1.59 at 85 and 1.88 at 89.9 for roughness 0;
 // 1.02 at 89.9 for roughness 1; measured by tests/stats/test_microfacet_furnace.cpp), because
 // the cosine-distributed l of the base mostly has a large v.h while the specular lobe sees
-// F_d(n.v) -> 1. Here the base is weighted by 1 - F_d(n.v), the Fresnel transmittance towards
-// the viewer (as KHR_materials_clearcoat weights the layer under the coat): the white furnace then
-// stays <= 1 everywhere. At normal incidence the two agree to ~1e-5 (v.h ~ n.v). f is then not
-// reciprocal (f(v,l) != f(l,v)), which a path tracer that always evaluates f(v = towards the
-// camera, l) does not need.
+// F_d(n.v) -> 1. Weighting it by 1 - F_d(n.v) instead keeps the furnace <= 1 but loses energy
+// (white, roughness 1: albedo 0.41 at 85 degrees; the Blender Cornell box 4-9% too dark). Here the
+// base is weighted by the energy the specular layer leaves, reciprocally (Kulla and Conty,
+// "Revisiting Physically Based Shading at Imageworks", SIGGRAPH 2017 course, sec. on the energy
+// of a diffuse base under a specular layer):
+//   base = baseColor / pi (1 - E(n.v)) (1 - E(n.l)) / (1 - E_avg),
+// E(mu) the directional albedo of the dielectric specular lobe (Fresnel included; E = f0 A + f90 B
+// from the tabulated A, B of ggxAlbedoLookup) and E_avg = 2 int E(mu) mu dmu its hemispherical
+// average: a white dielectric then reflects exactly 1 at every angle and roughness (up to the
+// table's interpolation error, < 0.5%), and f is reciprocal.
 //
 // Sampling. The specular lobe samples the distribution of visible normals (Heitz 2018, "Sampling
 // the GGX Distribution of Visible Normals", JCGT 7(4), listing 1) and reflects v about the sampled
@@ -148,6 +153,42 @@ VKP_FN float pdfGgxVndf(vec3 v, vec3 l, float alpha) {
     return pdfGgxVndfHalf(v, hv / sqrt(len2), alpha);
 }
 
+// ---- The albedo of the specular lobe (for the base's weight) -------------------------------------
+
+/// Samples of the table along mu^(1/4), mu = n.v, and along the perceptual roughness, each over
+/// [0,1] (mu^(1/4) puts the samples where E(mu) bends, at grazing angles).
+const uint GGX_ALBEDO_N = 64u;
+
+/// Texel t = j * GGX_ALBEDO_N + i of the table, (A, B, A_avg, B_avg) at mu = (i/(N-1))^4 and roughness
+/// j/(N-1): A = int D V (1 - (1 - v.h)^5) cos dl, B = int D V (1 - v.h)^5 cos dl (so that the
+/// lobe's albedo with Schlick's Fresnel is f0 A + f90 B), A_avg, B_avg their averages 2 int . mu dmu.
+/// Defined outside this header: by the host (host/render/ggx_albedo_table.cpp, which computes the
+/// table from this header's sampleGgxVndf) and by every kernel that includes it (a texel buffer).
+vec4 ggxAlbedoFetch(uint t);
+
+/// The table bilinearly interpolated at (mu^(1/4), roughness), both clamped into [0,1].
+VKP_FN vec4 ggxAlbedoLookup(float mu, float roughness) {
+    float x = sqrt(sqrt(clamp(mu, 0.0f, 1.0f))) * float(GGX_ALBEDO_N - 1u);
+    float y = clamp(roughness, 0.0f, 1.0f) * float(GGX_ALBEDO_N - 1u);
+    uint i = min(uint(x), GGX_ALBEDO_N - 2u);
+    uint j = min(uint(y), GGX_ALBEDO_N - 2u);
+    float fx = x - float(i);
+    float fy = y - float(j);
+    uint t = j * GGX_ALBEDO_N + i;
+    vec4 a = ggxAlbedoFetch(t) * (1.0f - fx) + ggxAlbedoFetch(t + 1u) * fx;
+    vec4 b = ggxAlbedoFetch(t + GGX_ALBEDO_N) * (1.0f - fx) + ggxAlbedoFetch(t + GGX_ALBEDO_N + 1u) * fx;
+    return a * (1.0f - fy) + b * fy;
+}
+
+/// The base's weight (per channel) for a dielectric layer of Fresnel f0, f90 (file comment):
+/// (1 - E(mu_o)) (1 - E(mu_i)) / (1 - E_avg), from the table at mu_o (to) and mu_i (ti).
+VKP_FN vec3 gltfBaseWeight(vec3 f0, float f90, vec4 to, vec4 ti) {
+    vec3 eo = f0 * to.x + vec3(f90 * to.y);
+    vec3 ei = f0 * ti.x + vec3(f90 * ti.y);
+    vec3 eavg = f0 * to.z + vec3(f90 * to.w);
+    return clamp((vec3(1.0f) - eo) * (vec3(1.0f) - ei) / max(vec3(1.0f) - eavg, vec3(1.0e-4f)), vec3(0.0f), vec3(1.0f));
+}
+
 // ---- The glTF BRDF -------------------------------------------------------------------------------
 
 /// A glTF metallic-roughness material, ready to evaluate (makeGltfBrdf fills it).
@@ -155,6 +196,7 @@ struct GltfBrdf {
     vec3 baseColor;  ///< linear RGB in [0,1]
     float metallic;  ///< [0,1]
     float alpha;     ///< ggxAlpha(roughness)
+    float roughness; ///< perceptual roughness in [0,1] (the albedo table's coordinate)
     vec3 f0;         ///< dielectric Fresnel at normal incidence: min(0.04 specularColor, 1) specularFactor
     float f90;       ///< dielectric Fresnel at grazing incidence: specularFactor
 };
@@ -166,6 +208,7 @@ VKP_FN GltfBrdf makeGltfBrdf(vec3 baseColor, float metallic, float roughness, fl
     m.baseColor = clamp(baseColor, vec3(0.0f), vec3(1.0f));
     m.metallic = clamp(metallic, 0.0f, 1.0f);
     m.alpha = ggxAlpha(roughness);
+    m.roughness = clamp(roughness, 0.0f, 1.0f);
     float sf = clamp(specularFactor, 0.0f, 1.0f);
     m.f0 = min(0.04f * max(specularColor, vec3(0.0f)), vec3(1.0f)) * sf;
     m.f90 = sf;
@@ -184,8 +227,8 @@ VKP_FN vec3 evalGltfBrdf(GltfBrdf m, vec3 v, vec3 l) {
     float spec = ggxD(h, m.alpha) * ggxVisibility(v, l, m.alpha);
     vec3 fd = fresnelSchlickF0(m.f0, m.f90, vh);
     vec3 fm = fresnelSchlickF0(m.baseColor, 1.0f, vh);
-    vec3 fdView = fresnelSchlickF0(m.f0, m.f90, v.z);  // the base's weight: see the file comment
-    vec3 dielectric = (vec3(1.0f) - fdView) * m.baseColor * VKP_INV_PI + fd * spec;
+    vec3 w = gltfBaseWeight(m.f0, m.f90, ggxAlbedoLookup(v.z, m.roughness), ggxAlbedoLookup(l.z, m.roughness));
+    vec3 dielectric = w * m.baseColor * VKP_INV_PI + fd * spec;  // the base's weight: file comment
     vec3 metal = fm * spec;
     return dielectric + (metal - dielectric) * m.metallic;
 }

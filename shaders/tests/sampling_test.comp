@@ -71,6 +71,9 @@ layout(local_size_x = 64) in;
 
 layout(std430, set = 0, binding = 0) readonly buffer InBuf { vec4 inData[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer OutBuf { vec4 outData[]; };
+// The GGX albedo table of microfacet.h (ggxAlbedoFetch), as the host computes it.
+layout(std430, set = 0, binding = 2) readonly buffer AlbedoBuf { vec4 albedoTable[]; };
+vec4 ggxAlbedoFetch(uint t) { return albedoTable[t]; }
 layout(push_constant) uniform Push {
     uint routine;
     uint count;

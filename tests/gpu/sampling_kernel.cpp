@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render/ggx_albedo_table.h"
 #include "sampling_test.spv.h"
 #include "shared/light_sampling.h"
 #include "shared/microfacet.h"
@@ -26,12 +27,17 @@ namespace gpu = vkp::gpu;
 
 std::vector<Out> runSamplingKernel(VulkanDevice& dev, Routine r, const std::vector<Item>& items) {
     static std::unique_ptr<ComputePipeline> pipe;  // one JIT for the whole test program
+    static std::unique_ptr<GpuBuffer> albedo;      // microfacet.h's GGX albedo table, as the host has it
     if (!pipe) {
         ComputePipelineDesc d;
         d.spirv = std::span<const std::uint32_t>(kSamplingTestSpv);
-        d.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer};
+        d.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eStorageBuffer};
         d.pushConstantBytes = 8;
         pipe = std::make_unique<ComputePipeline>(dev, d);
+        const std::vector<glm::vec4>& table = ggxAlbedoTable();
+        albedo = std::make_unique<GpuBuffer>(dev, table.size() * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer);
+        albedo->upload(table.data(), table.size() * sizeof(glm::vec4));
+        pipe->bindBuffer(2, albedo->buffer());
     }
     const auto n = static_cast<std::uint32_t>(items.size());
     GpuBuffer in(dev, sizeof(Item) * n, vk::BufferUsageFlagBits::eStorageBuffer);

@@ -32,7 +32,10 @@ ProcessResult runProcess(const std::filesystem::path& program, const std::vector
     const auto out = dir / ("out-" + std::to_string(::getpid()) + "-" + std::to_string(counter) + ".txt");
     const auto err = dir / ("err-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".txt");
     std::string cmd = "cd " + quote(cwd.string()) + " && " + envPrefix + " " + quote(program.string());
-    for (const auto& a : args) cmd += " " + quote(a);
+    for (const auto& a : args) {  // appended piecewise: GCC 12's -Wrestrict misfires on " " + string&&
+        cmd += ' ';
+        cmd += quote(a);
+    }
     cmd += " >" + quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
     const int status = std::system(cmd.c_str());
     ProcessResult r;

@@ -12,8 +12,7 @@ std::filesystem::path vkpathBinary() { return VKPATH_BINARY; }
 
 std::filesystem::path scratchDir(const std::string& testName) {
     const char* base = std::getenv("VKPATH_TEST_TMP");
-    std::filesystem::path dir = base ? std::filesystem::path(base) : std::filesystem::temp_directory_path();
-    dir /= "vkpath-tests";
+    std::filesystem::path dir = base ? std::filesystem::path(base) / "vkpath-tests" : std::filesystem::path(VKPATH_TEST_SCRATCH_DIR);
     dir /= testName;
     std::filesystem::create_directories(dir);
     return dir;

@@ -8,6 +8,7 @@ std::filesystem::path sourceDir();        ///< the repository root
 std::filesystem::path scenesDir();        ///< <repo>/scenes
 std::filesystem::path sharedScenesDir();  ///< ../shared/scenes beside the repository
 std::filesystem::path vkpathBinary();     ///< the built vkpath executable
-/// A fresh-or-existing scratch folder for one test: $VKPATH_TEST_TMP or the system temp dir.
+/// A fresh-or-existing scratch folder for one test, created: <build tree>/test-scratch/<name>, or
+/// $VKPATH_TEST_TMP/vkpath-tests/<name> when that variable is set.
 std::filesystem::path scratchDir(const std::string& testName);
 }  // namespace vkp::test
