@@ -27,6 +27,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/scene_lights.glsl"
 #include "lib/traverse.glsl"
 #include "lib/environment.glsl"
+#include "lib/surface.glsl"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
@@ -104,6 +105,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     bool frontFace = dot(s.d, ng) < 0.0f;
     vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
     GpuMaterial m = fetchMaterial(primMaterial(p));
+    vec3 nShade = surfaceAt(prim, p, ab, ns, s.d, primMaterial(p), m);  // textures, shading normal (lib/surface.glsl)
     uint mflags = floatBitsToUint(m.m0.w);
     uint mtype = mflags & 15u;
     vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
@@ -207,7 +209,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
         s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
     } else if (HAS_PBR && mtype == MAT_PBR) {
-        if (scatterPbr(s, m, p, prim, ab, x, ns, newDir, rays, passes)) return true;
+        if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, newDir, rays, passes)) return true;
     }
     s.d = newDir;
 

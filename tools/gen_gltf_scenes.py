@@ -15,6 +15,11 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
   no-camera.gltf               no camera: vkpath frames the scene's bounds
   emissive.glb                 emissive triangles (single- and double-sided), a PNG inside the GLB
   extensions.gltf              an extension vkpath does not implement, only used: one warning
+  textures.gltf                textures on the device (tests/gpu/test_gpu_textures.cpp): a 4x4 image
+                               of 16 distinct sRGB colours on quads with UVs in [-0.75, 1.75] and
+                               pure Lambertian materials (specularFactor 0): nearest filtering with
+                               REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT, KHR_texture_transform,
+                               bilinear filtering, a metallicRoughness map, a normal map
 
 Deterministic: running it again writes byte-identical files.
 Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
@@ -324,6 +329,64 @@ def extensions(out):
     g.write_gltf(out / "extensions.gltf")
 
 
+TEXTURE_4 = [[(40 + 60 * x, 40 + 60 * y, 200 - 50 * x, 255) for x in range(4)] for y in range(4)]
+# metallicRoughness: G = roughness 1 everywhere, B = metallic 0 or 1 in a 2x2 checker.
+TEXTURE_MR = [[(0, 255, 0, 255), (0, 255, 255, 255)], [(0, 255, 255, 255), (0, 255, 0, 255)]]
+TEXTURE_NORMAL = [[(255, 128, 255, 255)]]  # tangent-space (1, 0.004, 1): tilted about 39 degrees at scale 0.8
+
+
+def data_png(width, height, rgba):
+    return "data:image/png;base64," + base64.b64encode(png(width, height, rgba)).decode()
+
+
+def textures(out):
+    """Seven 2 x 2 quads in the plane z = 0 facing +z, side by side (quad i at x in [2.5 i, 2.5 i + 2],
+    y in [0, 2]); UV (-0.75, -0.75) at the top left corner, (1.75, 1.75) at the bottom right, so that
+    every wrap mode shows. Materials: metallic 0, roughness 1, specularFactor 0 (the Lambertian base
+    alone), baseColorFactor (1, 0.5, 1, 1) times the texture."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_texture_transform"]
+    g.doc["images"] = [{"uri": data_png(4, 4, TEXTURE_4)}, {"uri": data_png(2, 2, TEXTURE_MR)},
+                       {"uri": data_png(1, 1, TEXTURE_NORMAL)}]
+    nearest, linear, repeat, clamp, mirror = 9728, 9729, 10497, 33071, 33648
+    g.doc["samplers"] = [{"magFilter": nearest, "wrapS": repeat, "wrapT": repeat},
+                         {"magFilter": nearest, "wrapS": clamp, "wrapT": clamp},
+                         {"magFilter": nearest, "wrapS": mirror, "wrapT": mirror},
+                         {"magFilter": linear, "wrapS": repeat, "wrapT": mirror},
+                         {"magFilter": nearest, "wrapS": clamp, "wrapT": repeat}]
+    g.doc["textures"] = [{"source": 0, "sampler": i} for i in range(5)] + [{"source": 1, "sampler": 0},
+                                                                          {"source": 2, "sampler": 0}]
+
+    def mat(name, base_texture, **extra):
+        pbr = {"baseColorFactor": [1, 0.5, 1, 1], "metallicFactor": 0, "roughnessFactor": 1,
+               "baseColorTexture": base_texture}
+        pbr.update(extra.pop("pbr", {}))
+        m = {"name": name, "pbrMetallicRoughness": pbr,
+             "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+        m.update(extra)
+        return m
+    g.doc["materials"] = [
+        mat("repeat", {"index": 0}), mat("clamp", {"index": 1}), mat("mirror", {"index": 2}),
+        mat("transform", {"index": 4, "extensions": {"KHR_texture_transform": {
+            "offset": [0.25, -0.5], "rotation": 0.5, "scale": [1.5, 0.75]}}}),
+        mat("bilinear", {"index": 3}),
+        mat("metalrough", {"index": 0}, pbr={"metallicFactor": 1, "metallicRoughnessTexture": {"index": 5}}),
+        mat("normal", {"index": 0}, normalTexture={"index": 6, "scale": 0.8}),
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "textures.gltf")
+
+
 def grid(triangles, path):
     """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
     n = max(1, math.ceil(math.sqrt(triangles / 2)))
@@ -373,7 +436,7 @@ def main():
         return
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
-    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions):
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures):
         write(out)
 
 
