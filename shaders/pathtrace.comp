@@ -25,9 +25,10 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "shared/ray_offset.h"
 #include "shared/compensated_sum.h"
 #include "lib/scene_lights.glsl"
+#include "lib/surface.glsl"
+#include "lib/alpha.glsl"  // defines the traversal's any-hit hook
 #include "lib/traverse.glsl"
 #include "lib/environment.glsl"
-#include "lib/surface.glsl"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path

@@ -20,6 +20,9 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                pure Lambertian materials (specularFactor 0): nearest filtering with
                                REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT, KHR_texture_transform,
                                bilinear filtering, a metallicRoughness map, a normal map
+  alpha.gltf                   alphaMode (tests/gpu/test_gpu_alpha.cpp): MASK with a texture's
+                               alpha x the factor's against the cutoff, BLEND with alpha 0.25, and
+                               an opaque quad behind a fully cut-out one
 
 Deterministic: running it again writes byte-identical files.
 Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
@@ -387,6 +390,44 @@ def textures(out):
     g.write_gltf(out / "textures.gltf")
 
 
+def alpha(out):
+    """Quads as in textures(): 0 "mask" (MASK, cutoff 0.5, factor alpha 0.6 x texture alpha 1 or
+    128/255: solid or a hole in a checker), 1 "blend" (BLEND, alpha 0.25), 2 "back" (opaque grey)
+    at z = 0 behind 3 "ghost" (MASK, alpha 0.2: cut out everywhere) at z = 0.5, larger than it."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+    holes = [[(40 + 60 * x, 40 + 60 * y, 200 - 50 * x, 255 if (x + y) % 2 == 0 else 128) for x in range(4)]
+             for y in range(4)]
+    g.doc["images"] = [{"uri": data_png(4, 4, holes)}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+
+    def mat(name, factor, **extra):
+        pbr = {"baseColorFactor": factor, "metallicFactor": 0, "roughnessFactor": 1}
+        pbr.update(extra.pop("pbr", {}))
+        m = {"name": name, "pbrMetallicRoughness": pbr, "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+        m.update(extra)
+        return m
+    g.doc["materials"] = [
+        mat("mask", [1, 0.5, 1, 0.6], alphaMode="MASK", alphaCutoff=0.5, pbr={"baseColorTexture": {"index": 0}}),
+        mat("blend", [1, 0.5, 1, 0.25], alphaMode="BLEND"),
+        mat("back", [0.6, 0.6, 0.6, 1]),
+        mat("ghost", [1, 1, 1, 0.2], alphaMode="MASK"),
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    quads = [(0.0, 0.0, 0.0, 2.0), (2.5, 0.0, 0.0, 2.0), (5.0, 0.0, 0.0, 2.0), (4.9, -0.1, 0.5, 2.2)]  # x0, y0, z, size
+    for i, (x0, y0, z, size) in enumerate(quads):
+        pos = [(x0, y0 + size, z), (x0 + size, y0 + size, z), (x0 + size, y0, z), (x0, y0, z)]
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": g.doc["materials"][i]["name"], "primitives": [{
+            "attributes": attrs, "material": i, "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "alpha.gltf")
+
+
 def grid(triangles, path):
     """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
     n = max(1, math.ceil(math.sqrt(triangles / 2)))
@@ -436,7 +477,7 @@ def main():
         return
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
-    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures):
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha):
         write(out)
 
 

@@ -26,7 +26,7 @@ bool parseSampler(const std::string& name, Sampler& out) {
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures};
+            vertexAttributes, textures, alpha};
 }
 
 std::string Features::name() const {
@@ -57,6 +57,7 @@ std::string Features::name() const {
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";
     if (textures) out += " textures";
+    if (alpha) out += " alpha";
     return out;
 }
 
@@ -66,7 +67,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
-        f.vertexAttributes = f.textures = true;
+        f.vertexAttributes = f.textures = f.alpha = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -88,7 +89,8 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     f.environment = hasEnvironmentLight(scene);
     f.environmentMap = scene.environment.hasMap();
     f.textures = sceneHasTextures(scene);
-    f.vertexAttributes = f.textures || sceneHasVertexAttributes(scene);  // textures need the UVs
+    f.alpha = sceneHasAlpha(scene);
+    f.vertexAttributes = f.textures || f.alpha || sceneHasVertexAttributes(scene);  // textures need the UVs
     return f;
 }
 

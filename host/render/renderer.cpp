@@ -99,7 +99,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     // Textures and vertex attributes (lib/surface.glsl): only what the variant reads is uploaded
     // in full; the others get a token texel.
     TexturePack tex;
-    if (features_.textures) tex = packTextures(scene);
+    if (features_.textures || features_.alpha) tex = packTextures(scene);
     if (tex.info.empty()) tex.info.assign(1, glm::uvec4(0));
     if (tex.texels.empty()) tex.texels.assign(1, 0u);
     std::vector<glm::uvec4> attributes(1, glm::uvec4(0));

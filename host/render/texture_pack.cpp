@@ -46,6 +46,16 @@ bool sceneHasTextures(const Scene& scene) {
     return false;
 }
 
+bool sceneHasAlpha(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material m = kernelMaterial(scene.materials[i]);
+        if (m.type == MaterialType::Pbr && m.pbr.alphaMode != AlphaMode::Opaque) return true;
+    }
+    return false;
+}
+
 bool sceneHasVertexAttributes(const Scene& scene) {
     std::vector<int> pbr(scene.materials.size(), -1);
     for (const Shape& s : scene.shapes) {

@@ -37,6 +37,8 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vect
 
 /// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).
 bool sceneHasTextures(const Scene& scene);
+/// True if some kernel material of a shape has alphaMode MASK or BLEND (HAS_ALPHA).
+bool sceneHasAlpha(const Scene& scene);
 /// True if some mesh triangle with a MAT_PBR kernel material has NORMAL or TEXCOORD_0
 /// (HAS_VERTEX_ATTRIBUTES).
 bool sceneHasVertexAttributes(const Scene& scene);

@@ -19,6 +19,7 @@
 #ifndef VKP_SURFACE_GLSL
 #define VKP_SURFACE_GLSL
 #include "lib/bindings.glsl"
+#include "shared/intersect.h"
 
 layout(constant_id = 13) const bool HAS_VERTEX_ATTRIBUTES = true;  // UVs and shading normals of mesh triangles
 layout(constant_id = 14) const bool HAS_TEXTURES = true;           // materials read textures

@@ -34,16 +34,11 @@
 #include "stat_suite.h"
 #include "test_gpu_analytic_common.h"
 #include "test_paths.h"
+#include "texture_scene.h"
 #include "texture_test.spv.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
-namespace {
-const std::vector<std::uint32_t>* gTexels = nullptr;  // what the C++ texSample reads
-std::uint32_t hostFetch(std::uint32_t i) { return gTexels->at(i); }
-}  // namespace
-#define VKP_TEXEL_FETCH(i) hostFetch(i)
-#include "shared/texture_sample.h"
 
 namespace vkp::test {
 namespace {
@@ -148,7 +143,6 @@ TEST(GpuTextures, GlslMatchesCppOnTheSameLookups) {
 
 // ---- 2-5. Renders of scenes/gltf/textures.gltf ------------------------------------------------
 
-constexpr std::uint32_t kWidth = 560, kHeight = 80;
 
 Scene texturesScene(std::uint32_t seed) {
     // Quad i covers x in [2.5 i, 2.5 i + 2], y in [0, 2] at z = 0, which is the focal plane: the
@@ -164,105 +158,14 @@ Scene texturesScene(std::uint32_t seed) {
     return scene;
 }
 
-/// Where the ray through image point (px, py) (pixel units, as the kernel's jitter) meets z = 0.
-glm::dvec2 planePoint(const gpu::GpuFrame& f, double px, double py) {
-    const glm::dvec3 o(f.origin), t = glm::dvec3(f.pixel00) + px * glm::dvec3(f.pixelDu) + py * glm::dvec3(f.pixelDv);
-    const double s = o.z / (o.z - t.z);
-    const glm::dvec3 p = o + s * (t - o);
-    return glm::dvec2(p.x, p.y);
-}
-
-/// Quad index at a plane point (-1: none) and the UV there (as the file sets them).
-int quadAt(glm::dvec2 p, glm::vec2& uv) {
-    const int i = int(std::floor(p.x / 2.5));
-    const double x0 = 2.5 * i;
-    if (i < 0 || i > 6 || p.x < x0 || p.x > x0 + 2.0 || p.y < 0.0 || p.y > 2.0) return -1;
-    uv = glm::vec2(float(-0.75 + 1.25 * (p.x - x0)), float(-0.75 + 1.25 * (2.0 - p.y)));
-    return i;
-}
-
-/// One texture slot of material mi as packed for the kernel: header, transform.
-struct Slot {
-    bool valid = false;
-    glm::uvec4 header{0};
-    glm::vec4 rs{1, 0, 0, 1};
-    glm::vec2 offset{0};
-    glm::vec2 uvOf(glm::vec2 uv) const { return gpu::texTransform(uv, rs, offset); }
-    /// Texel (x, y) under the wrap modes (nearest), for the footprint test.
-    glm::ivec2 texel(glm::vec2 uv) const {
-        const glm::vec2 t = uvOf(uv);
-        const std::uint32_t ws = header.w & 3u, wt = (header.w >> 2u) & 3u;
-        return glm::ivec2(gpu::texWrap(int(std::floor(gpu::texReduce(t.x, ws) * float(header.y))), int(header.y), ws),
-                          gpu::texWrap(int(std::floor(gpu::texReduce(t.y, wt) * float(header.z))), int(header.z), wt));
-    }
-};
-
-Slot slotOf(const TexturePack& pack, std::uint32_t mi, std::uint32_t slot) {
-    const glm::uvec4* rec = &pack.info[1 + kMatTexTexels * mi + 2 * slot];
-    Slot s;
-    s.valid = rec[1].z != kNoTexture;
-    if (!s.valid) return s;
-    s.header = pack.info[pack.info[0].x + rec[1].z];
-    s.rs = glm::vec4(std::bit_cast<float>(rec[0].x), std::bit_cast<float>(rec[0].y), std::bit_cast<float>(rec[0].z),
-                     std::bit_cast<float>(rec[0].w));
-    s.offset = glm::vec2(std::bit_cast<float>(rec[1].x), std::bit_cast<float>(rec[1].y));
-    return s;
-}
-
-std::uint32_t materialNamed(const Scene& scene, const std::string& name) {
-    for (std::uint32_t i = 0; i < scene.materials.size(); ++i)
-        if (scene.materials[i].name == name) return i;
-    ADD_FAILURE() << "no material " << name;
-    return 0;
-}
-
-using CellOf = std::function<glm::ivec2(glm::vec2)>;  // UV -> the cell it lies in
-
-/// Pixels whose whole footprint (corners pushed out by 0.02 pixel) lies on quad q and inside one
-/// cell of every given cell function (cells are convex in the image plane, so the corners decide).
-std::vector<Pixel> insideCells(const gpu::GpuFrame& f, int q, const std::vector<CellOf>& slots) {
-    std::vector<Pixel> out;
-    for (std::uint32_t y = 0; y < kHeight; ++y)
-        for (std::uint32_t x = 0; x < kWidth; ++x) {
-            bool ok = true;
-            glm::ivec2 first[4];
-            int k = 0;
-            for (double sx : {-0.52, 0.52})
-                for (double sy : {-0.52, 0.52}) {
-                    glm::vec2 uv;
-                    ok = ok && quadAt(planePoint(f, x + sx, y + sy), uv) == q;
-                    for (std::size_t s = 0; ok && s < slots.size(); ++s) {
-                        const glm::ivec2 t = slots[s](uv);
-                        if (k == 0) first[s] = t;
-                        ok = t == first[s];
-                    }
-                    ++k;
-                }
-            if (ok) out.push_back({x, y});
-        }
-    return out;
-}
-
-/// ... inside one texel of every slot under nearest filtering (wrapped texels: where wrapping
-/// joins two cells, the texel is the same on both, so the value is constant over the union).
-std::vector<Pixel> insideTexels(const gpu::GpuFrame& f, int q, const std::vector<Slot>& slots) {
-    std::vector<CellOf> cells;
-    for (const Slot& s : slots) cells.push_back([s](glm::vec2 uv) { return s.texel(uv); });
-    return insideCells(f, q, cells);
-}
-
-glm::vec2 centreUv(const gpu::GpuFrame& f, Pixel p) {
-    glm::vec2 uv(0.0f);
-    quadAt(planePoint(f, p.x, p.y), uv);
-    return uv;
-}
-
 struct TexturedRender {
     Scene scene;
     TexturePack pack;
     gpu::GpuFrame frame{};
     PixelStats stats;
 };
+
+constexpr std::uint32_t kWidth = 560, kHeight = 80;
 
 TexturedRender renderTextures(VulkanDevice& dev, Sampler s, std::uint32_t spp, std::uint32_t seed) {
     Scene scene = texturesScene(seed);
@@ -285,12 +188,12 @@ TEST(GpuTextures, NearestWrapAndTransformGiveTheTexelExactly) {
         for (int q = 0; q < 4; ++q) {
             const Slot base = slotOf(r.pack, materialNamed(r.scene, names[q]), kTexSlotBaseColor);
             ASSERT_TRUE(base.valid && (base.header.w & gpu::TEXF_NEAREST) && (base.header.w & gpu::TEXF_SRGB)) << names[q];
-            const std::vector<Pixel> px = insideTexels(r.frame, q, {base});
+            const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, q, {base});
             EXPECT_GT(px.size(), 2000u) << names[q];  // of ~4300 pixels on the quad
             int bad = 0;
             std::map<std::pair<int, int>, int> seen;
             for (const Pixel& p : px) {
-                const glm::vec2 uv = centreUv(r.frame, p);
+                const glm::vec2 uv = centreUv(r.frame, p, 7);
                 const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(uv));
                 const glm::ivec2 t = base.texel(uv);
                 ++seen[{t.x, t.y}];
@@ -327,12 +230,12 @@ TEST(GpuTextures, BilinearCellMeansAreTheCentreValues) {
         const glm::vec2 t = base.uvOf(uv);
         return glm::ivec2(int(std::floor(t.x * float(base.header.y) - 0.5f)), int(std::floor(t.y * float(base.header.z) - 0.5f)));
     };
-    const std::vector<Pixel> px = insideCells(r.frame, 4, {cell});
+    const std::vector<Pixel> px = insideCells(r.frame, kWidth, kHeight, 7, 4, {cell});
     ASSERT_GT(px.size(), 2000u);
     // Grouped by cell; each pixel has its own expected value, so any grouping is a valid test.
     std::map<std::pair<int, int>, std::vector<Pixel>> byCell;
     for (const Pixel& p : px) {
-        const glm::ivec2 c = cell(centreUv(r.frame, p));
+        const glm::ivec2 c = cell(centreUv(r.frame, p, 7));
         byCell[{c.x, c.y}].push_back(p);
     }
     int tests = 0;
@@ -340,7 +243,7 @@ TEST(GpuTextures, BilinearCellMeansAreTheCentreValues) {
         if (pixels.size() < 8) continue;
         for (int c = 0; c < 3; ++c) {
             double want = 0.0;
-            for (const Pixel& p : pixels) want += double(kFactor[c] * gpu::texSample(base.header, centreUv(r.frame, p))[c]);
+            for (const Pixel& p : pixels) want += double(kFactor[c] * gpu::texSample(base.header, centreUv(r.frame, p, 7))[c]);
             want /= double(pixels.size());
             EXPECT_TRUE(withinNoise(average(r.stats, pixels, c), want, "bilinear cell, " + std::string(kChannel[c])));
             ++tests;
@@ -359,11 +262,11 @@ TEST(GpuTextures, MetallicRoughnessMapSelectsTheMetal) {
     const std::uint32_t mi = materialNamed(r.scene, "metalrough");
     const Slot base = slotOf(r.pack, mi, kTexSlotBaseColor), mr = slotOf(r.pack, mi, kTexSlotMetallicRoughness);
     ASSERT_TRUE(base.valid && mr.valid);
-    const std::vector<Pixel> px = insideTexels(r.frame, 5, {base, mr});
+    const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, 5, {base, mr});
     int dielectric = 0, bad = 0;
     std::vector<Pixel> metal;
     for (const Pixel& p : px) {
-        const glm::vec2 uv = centreUv(r.frame, p);
+        const glm::vec2 uv = centreUv(r.frame, p, 7);
         const glm::vec4 m = gpu::texSample(mr.header, mr.uvOf(uv));
         const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(uv));
         if (m.z == 0.0f) {  // metallic 0: the Lambertian base, exactly
@@ -387,7 +290,7 @@ TEST(GpuTextures, MetallicRoughnessMapSelectsTheMetal) {
     // The mean over metal pixels of (pixel - Lambertian answer) / Lambertian answer:
     double rel = 0.0;
     for (const Pixel& p : metal) {
-        const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p)));
+        const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, 7)));
         rel += (r.stats.mean.at(p.x, p.y, 1) - double(kFactor[1] * texel[1])) / double(kFactor[1] * texel[1]);
     }
     rel /= double(metal.size());
@@ -410,13 +313,13 @@ TEST(GpuTextures, NormalMapTiltsTheCosineLobe) {
         const float scale = r.scene.materials[mi].pbr.normalScale;
         const glm::dvec3 tn((2.0 * c.x - 1.0) * scale, (2.0 * c.y - 1.0) * scale, 2.0 * c.z - 1.0);
         const double cosTheta = tn.z / glm::length(tn), expectFraction = 0.5 * (1.0 + cosTheta);
-        const std::vector<Pixel> px = insideTexels(r.frame, 6, {base});
+        const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, 6, {base});
         ASSERT_GT(px.size(), 2000u);
         for (int ch = 0; ch < 3; ++ch) {
             // Average over the pixels of pixel / albedo: expected (1 + cos theta) / 2.
             Estimate e;
             for (const Pixel& p : px) {
-                const double a = double(kFactor[ch] * gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p)))[ch]);
+                const double a = double(kFactor[ch] * gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, 7)))[ch]);
                 e.mean += r.stats.mean.at(p.x, p.y, ch) / a;
                 e.var += r.stats.var.at(p.x, p.y, ch) / (a * a);
                 e.n = spp;
