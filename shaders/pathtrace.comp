@@ -158,6 +158,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             if (!toEnv && ls.pdf > 0.0f && cosL > 0.0f && !self) {
                 GpuMaterial lm = fetchMaterial(primMaterial(lp));
                 vec3 lx = x + ls.dist * ls.dir;
+                emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
                 vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
                 if (max(le.x, max(le.y, le.z)) > 0.0f) {  // no shadow ray towards a light's back
                     rays++;

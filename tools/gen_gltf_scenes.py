@@ -23,6 +23,8 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
   alpha.gltf                   alphaMode (tests/gpu/test_gpu_alpha.cpp): MASK with a texture's
                                alpha x the factor's against the cutoff, BLEND with alpha 0.25, and
                                an opaque quad behind a fully cut-out one
+  emissive-texture.gltf        an emissiveTexture (tests/gpu/test_gpu_emissive_texture.cpp): a lamp
+                               quad seen straight on, and a panel of the same material over a floor
 
 Deterministic: running it again writes byte-identical files.
 Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
@@ -428,6 +430,37 @@ def alpha(out):
     g.write_gltf(out / "alpha.gltf")
 
 
+def emissive_texture(out):
+    """Quad "lamp" as in textures() (x in [0, 2], y in [0, 2], z = 0, facing +z) with emissiveFactor
+    (1, 0.5, 1) x strength 2 x the 4x4 colour texture (nearest, repeat); a "panel" of the same
+    material (y = -3, x in [11, 13], z in [-1, 1], facing down) over a grey Lambertian floor
+    (y = -5, x in [9, 15], z in [-3, 3]), out of the first camera's view."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_emissive_strength"]
+    g.doc["images"] = [{"uri": data_png(4, 4, TEXTURE_4)}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [
+        {"name": "lamp", "emissiveFactor": [1, 0.5, 1], "emissiveTexture": {"index": 0},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    quads = [("lamp", 0, [(0, 2, 0), (2, 2, 0), (2, 0, 0), (0, 0, 0)]),
+             ("panel", 0, [(11, -3, 1), (13, -3, 1), (13, -3, -1), (11, -3, -1)]),   # faces -y
+             ("floor", 1, [(9, -5, -3), (15, -5, -3), (15, -5, 3), (9, -5, 3)])]     # faces +y
+    for name, material, pos in quads:
+        attrs = {"POSITION": g.positions(pos), "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": name, "primitives": [{"attributes": attrs, "material": material,
+                                                       "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": q[0], "mesh": i} for i, q in enumerate(quads)]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2]}]
+    g.write_gltf(out / "emissive-texture.gltf")
+
+
 def grid(triangles, path):
     """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
     n = max(1, math.ceil(math.sqrt(triangles / 2)))
@@ -477,7 +510,7 @@ def main():
         return
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
-    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha):
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture):
         write(out)
 
 

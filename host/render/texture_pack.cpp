@@ -26,10 +26,18 @@ void packSlot(const TextureRef& r, glm::uvec4* out) {
     out[1] = glm::uvec4(bits(r.offset.x), bits(r.offset.y), r.valid() ? std::uint32_t(r.texture) : kNoTexture, 0u);
 }
 
-bool materialReadsTextures(const Material& m) {
+/// The emissive texture the kernel applies to `original` (a glTF emitter becomes a diffuse_light).
+TextureRef emissiveTextureOf(const Material& original) {
+    if (original.type == MaterialType::Pbr && kernelMaterial(original).type == MaterialType::DiffuseLight)
+        return original.pbr.emissiveTexture;
+    return TextureRef{};
+}
+
+bool materialReadsTextures(const Material& original) {
+    const Material m = kernelMaterial(original);
     if (m.type == MaterialType::Pbr)
         return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid();
-    return false;
+    return emissiveTextureOf(original).valid();
 }
 
 std::vector<bool> usedMaterials(const Scene& scene) {
@@ -42,7 +50,7 @@ std::vector<bool> usedMaterials(const Scene& scene) {
 bool sceneHasTextures(const Scene& scene) {
     const std::vector<bool> used = usedMaterials(scene);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        if (used[i] && materialReadsTextures(kernelMaterial(scene.materials[i]))) return true;
+        if (used[i] && materialReadsTextures(scene.materials[i])) return true;
     return false;
 }
 
@@ -82,7 +90,7 @@ TexturePack packTextures(const Scene& scene) {
         packSlot(pbr ? m.pbr.baseColorTexture : none, rec + 2 * kTexSlotBaseColor);
         packSlot(pbr ? m.pbr.metallicRoughnessTexture : none, rec + 2 * kTexSlotMetallicRoughness);
         packSlot(pbr ? m.pbr.normalTexture : none, rec + 2 * kTexSlotNormal);
-        packSlot(none, rec + 2 * kTexSlotEmissive);  // emissive textures: not on the device yet
+        packSlot(emissiveTextureOf(scene.materials[i]), rec + 2 * kTexSlotEmissive);
         rec[2 * kTexSlots] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
                                         bits(m.pbr.baseColor.w));
     }

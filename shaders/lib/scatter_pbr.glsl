@@ -67,6 +67,7 @@ bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab,
         if (!toEnv && ls.pdf > 0.0f && lLight.z > 0.0f && !belowGeometric(ls.dir, ns) && !self) {
             GpuMaterial lm = fetchMaterial(primMaterial(lp));
             vec3 lx = x + ls.dist * ls.dir;
+            emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
             vec3 nl = primNormal(lp, lx);
             vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, nl);
             if (max(le.x, max(le.y, le.z)) > 0.0f) {

@@ -39,6 +39,7 @@ const uint MAT_TEX_TEXELS = 9u;
 const uint SLOT_BASE_COLOR = 0u;
 const uint SLOT_METALLIC_ROUGHNESS = 1u;
 const uint SLOT_NORMAL = 2u;
+const uint SLOT_EMISSIVE = 3u;
 const uint NO_TEXTURE = 0xffffffffu;
 
 /// Sample texture slot `slot` of the material record at `rec` at uv; false if the slot is empty.
@@ -98,9 +99,38 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
             }
         }
     }
+    if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & ATTR_HAS_UV) != 0u) {
+        vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
+        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, SLOT_EMISSIVE, w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy, c)) m.m1.xyz *= c.xyz;
+    }
     if (!hasN) return ns;
     if (dot(n, ns) < 0.0f) n = -n;              // the side the ray arrived on
     return dot(n, d) < 0.0f ? n : ns;           // viewer below the shading horizon: geometric
+}
+
+/// The emissive texture at a point x sampled on light primitive `prim` (next-event estimation):
+/// multiplies the emission of a diffuse_light material m with an emissiveTexture by its value
+/// there; anything else is left alone.
+void emissiveTextureAt(uint prim, GpuPrim p, vec3 x, inout GpuMaterial m) {
+    if (!HAS_TEXTURES || !HAS_EMITTERS || primKind(p) != PRIM_TRIANGLE) return;
+    if ((floatBitsToUint(m.m0.w) & 15u) != MAT_DIFFUSE_LIGHT) return;
+    vec3 e1 = primEdge1(p);
+    vec3 e2 = primEdge2(p);
+    vec3 v = x - p.p0.xyz;
+    float d00 = dot(e1, e1);
+    float d01 = dot(e1, e2);
+    float d11 = dot(e2, e2);
+    float den = d00 * d11 - d01 * d01;
+    if (!(den > 0.0f)) return;
+    float a = (d11 * dot(v, e1) - d01 * dot(v, e2)) / den;  // x = v0 + a e1 + b e2
+    float b = (d00 * dot(v, e2) - d01 * dot(v, e1)) / den;
+    int base = int(prim * ATTR_TEXELS);
+    vec4 a0 = fetchF(uAttributes, base);
+    vec4 a1 = fetchF(uAttributes, base + 1);
+    if ((floatBitsToUint(a1.z) & ATTR_HAS_UV) == 0u) return;
+    vec4 c;
+    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), SLOT_EMISSIVE, (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy, c))
+        m.m1.xyz *= c.xyz;
 }
 
 #endif
