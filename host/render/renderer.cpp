@@ -104,14 +104,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     if (tex.texels.empty()) tex.texels.assign(1, 0u);
     std::vector<glm::uvec4> attributes(1, glm::uvec4(0));
     if (features_.vertexAttributes) attributes = packVertexAttributes(scene, bvh.primToShape);
-    if (tex.texels.size() > texelLimit || tex.info.size() > texelLimit)
-        throw VulkanError("textures too large for this device: " + std::to_string(scene.images.size()) + " images need " +
-                          std::to_string(tex.texels.size()) + " texels, more than maxTexelBufferElements = " +
-                          std::to_string(texelLimit));
-    if (attributes.size() > texelLimit)
-        throw VulkanError("scene too large for this device: the vertex attributes of " + std::to_string(bvh.prims.size()) +
-                          " primitives need " + std::to_string(attributes.size()) +
-                          " texels, more than maxTexelBufferElements = " + std::to_string(texelLimit));
+    if (const std::string problem = texelLimitProblem(scene, tex, attributes.size(), texelLimit); !problem.empty())
+        throw VulkanError(problem);
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 

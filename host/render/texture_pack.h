@@ -2,6 +2,7 @@
 // Texel layouts are documented in shaders/shared/texture_sample.h and surface.glsl.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -34,6 +35,11 @@ TexturePack packTextures(const Scene& scene);
 /// One kAttributeTexels record per BVH primitive (primToShape order): UVs, shading normals and
 /// tangents of mesh triangles; zeros (flags 0: no attributes) for every other primitive.
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vector<std::uint32_t>& primToShape);
+
+/// Empty if the packed textures (pack) and vertex-attribute records (attributeTexels texels) fit
+/// texel buffers of at most `limit` elements (maxTexelBufferElements); else the one line that
+/// refuses the scene, naming its file, the counts and the largest image.
+std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::size_t attributeTexels, std::uint64_t limit);
 
 /// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).
 bool sceneHasTextures(const Scene& scene);
