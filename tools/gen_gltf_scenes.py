@@ -19,7 +19,8 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                of 16 distinct sRGB colours on quads with UVs in [-0.75, 1.75] and
                                pure Lambertian materials (specularFactor 0): nearest filtering with
                                REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT, KHR_texture_transform,
-                               bilinear filtering, a metallicRoughness map, a normal map
+                               bilinear filtering, a metallicRoughness map, a normal map (with
+                               and without NORMAL)
   alpha.gltf                   alphaMode (tests/gpu/test_gpu_alpha.cpp): MASK with a texture's
                                alpha x the factor's against the cutoff, BLEND with alpha 0.25, and
                                an opaque quad behind a fully cut-out one
@@ -345,7 +346,7 @@ def data_png(width, height, rgba):
 
 
 def textures(out):
-    """Seven 2 x 2 quads in the plane z = 0 facing +z, side by side (quad i at x in [2.5 i, 2.5 i + 2],
+    """Eight 2 x 2 quads in the plane z = 0 facing +z, side by side (quad i at x in [2.5 i, 2.5 i + 2],
     y in [0, 2]); UV (-0.75, -0.75) at the top left corner, (1.75, 1.75) at the bottom right, so that
     every wrap mode shows. Materials: metallic 0, roughness 1, specularFactor 0 (the Lambertian base
     alone), baseColorFactor (1, 0.5, 1, 1) times the texture."""
@@ -377,13 +378,15 @@ def textures(out):
         mat("bilinear", {"index": 3}),
         mat("metalrough", {"index": 0}, pbr={"metallicFactor": 1, "metallicRoughnessTexture": {"index": 5}}),
         mat("normal", {"index": 0}, normalTexture={"index": 6, "scale": 0.8}),
+        mat("normal-flat", {"index": 0}, normalTexture={"index": 6, "scale": 0.8}),  # a mesh without NORMAL
     ]
     uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
     for i, m in enumerate(g.doc["materials"]):
         x0 = 2.5 * i
         pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
-        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
-                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        attrs = {"POSITION": g.positions(pos), "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        if m["name"] != "normal-flat":
+            attrs["NORMAL"] = g.accessor([0, 0, 1] * 4, FLOAT, "VEC3")
         g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
                                                             "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
     g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]

@@ -83,7 +83,9 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
             m.m3.x *= c.z;  // metallic in B
             m.m3.y *= c.y;  // roughness in G
         }
-        if (hasN && (flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
+        if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
+            // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
+            if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
             vec4 t = w0 * fetchF(uAttributes, base + 5) + ab.x * fetchF(uAttributes, base + 6) +
                      ab.y * fetchF(uAttributes, base + 7);
             vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
@@ -95,7 +97,10 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
                 vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
                 vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
                 float nl = length(nm);
-                if (nl > 0.0f) n = nm / nl;
+                if (nl > 0.0f) {
+                    n = nm / nl;
+                    hasN = true;
+                }
             }
         }
     }

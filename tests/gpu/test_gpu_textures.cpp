@@ -15,7 +15,8 @@
 //     pixel's box is its value at the centre: z-tests of cell averages.
 //  4. metallicRoughnessTexture (metallicFactor 1 x B): pixels on metallic-0 texels exactly the
 //     Lambertian answer, pixels on metallic-1 texels far from it (a rough metal).
-//  5. normalTexture: a constant tangent-space normal tilted by theta; with directions below the
+//  5. normalTexture (on a mesh with NORMAL and on one without): a constant tangent-space normal
+//     tilted by theta; with directions below the
 //     geometric surface given f = 0 (lib/surface.glsl), a Lambertian plane under a uniform sky
 //     reflects albedo x (1 + cos theta) / 2 (the part of the tilted cosine lobe above the plane).
 #include <gtest/gtest.h>
@@ -148,8 +149,8 @@ Scene texturesScene(std::uint32_t seed) {
     // Quad i covers x in [2.5 i, 2.5 i + 2], y in [0, 2] at z = 0, which is the focal plane: the
     // point a camera ray aims at is the point it hits.
     Scene scene = parseSceneJson(R"({
-      "camera": {"lookfrom": [8.5, 1, 20], "lookat": [8.5, 1, 0], "vup": [0, 1, 0], "vfov": 7.152669,
-                 "width": 560, "height": 80},
+      "camera": {"lookfrom": [9.75, 1, 20], "lookat": [9.75, 1, 0], "vup": [0, 1, 0], "vfov": 7.152669,
+                 "width": 640, "height": 80},
       "render": {"max_depth": 50, "background": [1, 1, 1]},
       "materials": {"unused": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}},
       "objects": [{"type": "gltf", "file": "textures.gltf"}]})",
@@ -165,7 +166,8 @@ struct TexturedRender {
     PixelStats stats;
 };
 
-constexpr std::uint32_t kWidth = 560, kHeight = 80;
+constexpr std::uint32_t kWidth = 640, kHeight = 80;
+constexpr int kQuads = 8;
 
 TexturedRender renderTextures(VulkanDevice& dev, Sampler s, std::uint32_t spp, std::uint32_t seed) {
     Scene scene = texturesScene(seed);
@@ -188,12 +190,12 @@ TEST(GpuTextures, NearestWrapAndTransformGiveTheTexelExactly) {
         for (int q = 0; q < 4; ++q) {
             const Slot base = slotOf(r.pack, materialNamed(r.scene, names[q]), kTexSlotBaseColor);
             ASSERT_TRUE(base.valid && (base.header.w & gpu::TEXF_NEAREST) && (base.header.w & gpu::TEXF_SRGB)) << names[q];
-            const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, q, {base});
+            const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, kQuads, q, {base});
             EXPECT_GT(px.size(), 2000u) << names[q];  // of ~4300 pixels on the quad
             int bad = 0;
             std::map<std::pair<int, int>, int> seen;
             for (const Pixel& p : px) {
-                const glm::vec2 uv = centreUv(r.frame, p, 7);
+                const glm::vec2 uv = centreUv(r.frame, p, kQuads);
                 const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(uv));
                 const glm::ivec2 t = base.texel(uv);
                 ++seen[{t.x, t.y}];
@@ -230,12 +232,12 @@ TEST(GpuTextures, BilinearCellMeansAreTheCentreValues) {
         const glm::vec2 t = base.uvOf(uv);
         return glm::ivec2(int(std::floor(t.x * float(base.header.y) - 0.5f)), int(std::floor(t.y * float(base.header.z) - 0.5f)));
     };
-    const std::vector<Pixel> px = insideCells(r.frame, kWidth, kHeight, 7, 4, {cell});
+    const std::vector<Pixel> px = insideCells(r.frame, kWidth, kHeight, kQuads, 4, {cell});
     ASSERT_GT(px.size(), 2000u);
     // Grouped by cell; each pixel has its own expected value, so any grouping is a valid test.
     std::map<std::pair<int, int>, std::vector<Pixel>> byCell;
     for (const Pixel& p : px) {
-        const glm::ivec2 c = cell(centreUv(r.frame, p, 7));
+        const glm::ivec2 c = cell(centreUv(r.frame, p, kQuads));
         byCell[{c.x, c.y}].push_back(p);
     }
     int tests = 0;
@@ -243,7 +245,7 @@ TEST(GpuTextures, BilinearCellMeansAreTheCentreValues) {
         if (pixels.size() < 8) continue;
         for (int c = 0; c < 3; ++c) {
             double want = 0.0;
-            for (const Pixel& p : pixels) want += double(kFactor[c] * gpu::texSample(base.header, centreUv(r.frame, p, 7))[c]);
+            for (const Pixel& p : pixels) want += double(kFactor[c] * gpu::texSample(base.header, centreUv(r.frame, p, kQuads))[c]);
             want /= double(pixels.size());
             EXPECT_TRUE(withinNoise(average(r.stats, pixels, c), want, "bilinear cell, " + std::string(kChannel[c])));
             ++tests;
@@ -262,11 +264,11 @@ TEST(GpuTextures, MetallicRoughnessMapSelectsTheMetal) {
     const std::uint32_t mi = materialNamed(r.scene, "metalrough");
     const Slot base = slotOf(r.pack, mi, kTexSlotBaseColor), mr = slotOf(r.pack, mi, kTexSlotMetallicRoughness);
     ASSERT_TRUE(base.valid && mr.valid);
-    const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, 5, {base, mr});
+    const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, kQuads, 5, {base, mr});
     int dielectric = 0, bad = 0;
     std::vector<Pixel> metal;
     for (const Pixel& p : px) {
-        const glm::vec2 uv = centreUv(r.frame, p, 7);
+        const glm::vec2 uv = centreUv(r.frame, p, kQuads);
         const glm::vec4 m = gpu::texSample(mr.header, mr.uvOf(uv));
         const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(uv));
         if (m.z == 0.0f) {  // metallic 0: the Lambertian base, exactly
@@ -290,7 +292,7 @@ TEST(GpuTextures, MetallicRoughnessMapSelectsTheMetal) {
     // The mean over metal pixels of (pixel - Lambertian answer) / Lambertian answer:
     double rel = 0.0;
     for (const Pixel& p : metal) {
-        const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, 7)));
+        const glm::vec4 texel = gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, kQuads)));
         rel += (r.stats.mean.at(p.x, p.y, 1) - double(kFactor[1] * texel[1])) / double(kFactor[1] * texel[1]);
     }
     rel /= double(metal.size());
@@ -303,9 +305,11 @@ TEST(GpuTextures, NormalMapTiltsTheCosineLobe) {
     VKP_REQUIRE_DEVICE(dev);
     const std::uint32_t spp = 256;
     for (Sampler s : {Sampler::Bsdf, Sampler::Mis}) {
-        TexturedRender r = renderTextures(dev, s, spp, 8 + std::uint32_t(s));
-        gTexels = &r.pack.texels;
-        const std::uint32_t mi = materialNamed(r.scene, "normal");
+      TexturedRender r = renderTextures(dev, s, spp, 8 + std::uint32_t(s));
+      gTexels = &r.pack.texels;
+      // Quad 6 has NORMAL (0, 0, 1); quad 7 none: the map perturbs the flat normal, the same here.
+      for (const int quad : {6, 7}) {
+        const std::uint32_t mi = materialNamed(r.scene, quad == 6 ? "normal" : "normal-flat");
         const Slot base = slotOf(r.pack, mi, kTexSlotBaseColor), nm = slotOf(r.pack, mi, kTexSlotNormal);
         ASSERT_TRUE(base.valid && nm.valid);
         // The kernel's tangent-space normal from the 1x1 map at scale 0.8 (glTF: (2 c - 1) x scale in xy).
@@ -313,13 +317,13 @@ TEST(GpuTextures, NormalMapTiltsTheCosineLobe) {
         const float scale = r.scene.materials[mi].pbr.normalScale;
         const glm::dvec3 tn((2.0 * c.x - 1.0) * scale, (2.0 * c.y - 1.0) * scale, 2.0 * c.z - 1.0);
         const double cosTheta = tn.z / glm::length(tn), expectFraction = 0.5 * (1.0 + cosTheta);
-        const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, 7, 6, {base});
+        const std::vector<Pixel> px = insideTexels(r.frame, kWidth, kHeight, kQuads, quad, {base});
         ASSERT_GT(px.size(), 2000u);
         for (int ch = 0; ch < 3; ++ch) {
             // Average over the pixels of pixel / albedo: expected (1 + cos theta) / 2.
             Estimate e;
             for (const Pixel& p : px) {
-                const double a = double(kFactor[ch] * gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, 7)))[ch]);
+                const double a = double(kFactor[ch] * gpu::texSample(base.header, base.uvOf(centreUv(r.frame, p, kQuads)))[ch]);
                 e.mean += r.stats.mean.at(p.x, p.y, ch) / a;
                 e.var += r.stats.var.at(p.x, p.y, ch) / (a * a);
                 e.n = spp;
@@ -327,10 +331,11 @@ TEST(GpuTextures, NormalMapTiltsTheCosineLobe) {
             e.mean /= double(px.size());
             e.var /= double(px.size()) * double(px.size());
             EXPECT_TRUE(withinNoise(e, expectFraction,
-                                    std::string(samplerName(s)) + " normal map (theta " +
+                                    std::string(samplerName(s)) + " " + r.scene.materials[mi].name + " (theta " +
                                         std::to_string(std::acos(cosTheta) * 180.0 / kPi) + " deg), " + kChannel[ch],
                                     true));
         }
+      }
     }
 }
 
