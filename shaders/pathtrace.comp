@@ -25,6 +25,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "shared/ray_offset.h"
 #include "shared/compensated_sum.h"
 #include "lib/scene_lights.glsl"
+#include "lib/surface.glsl"
+#include "lib/alpha.glsl"  // defines the traversal's any-hit hook
 #include "lib/traverse.glsl"
 #include "lib/environment.glsl"
 
@@ -104,6 +106,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     bool frontFace = dot(s.d, ng) < 0.0f;
     vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
     GpuMaterial m = fetchMaterial(primMaterial(p));
+    vec3 nShade = surfaceAt(prim, p, ab, ns, s.d, primMaterial(p), m);  // textures, shading normal (lib/surface.glsl)
     uint mflags = floatBitsToUint(m.m0.w);
     uint mtype = mflags & 15u;
     vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
@@ -155,6 +158,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             if (!toEnv && ls.pdf > 0.0f && cosL > 0.0f && !self) {
                 GpuMaterial lm = fetchMaterial(primMaterial(lp));
                 vec3 lx = x + ls.dist * ls.dir;
+                emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
                 vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
                 if (max(le.x, max(le.y, le.z)) > 0.0f) {  // no shadow ray towards a light's back
                     rays++;
@@ -207,7 +211,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
         s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
     } else if (HAS_PBR && mtype == MAT_PBR) {
-        if (scatterPbr(s, m, p, prim, ab, x, ns, newDir, rays, passes)) return true;
+        if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, newDir, rays, passes)) return true;
     }
     s.d = newDir;
 

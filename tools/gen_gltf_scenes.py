@@ -15,6 +15,17 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
   no-camera.gltf               no camera: vkpath frames the scene's bounds
   emissive.glb                 emissive triangles (single- and double-sided), a PNG inside the GLB
   extensions.gltf              an extension vkpath does not implement, only used: one warning
+  textures.gltf                textures on the device (tests/gpu/test_gpu_textures.cpp): a 4x4 image
+                               of 16 distinct sRGB colours on quads with UVs in [-0.75, 1.75] and
+                               pure Lambertian materials (specularFactor 0): nearest filtering with
+                               REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT, KHR_texture_transform,
+                               bilinear filtering, a metallicRoughness map, a normal map (with
+                               and without NORMAL)
+  alpha.gltf                   alphaMode (tests/gpu/test_gpu_alpha.cpp): MASK with a texture's
+                               alpha x the factor's against the cutoff, BLEND with alpha 0.25, and
+                               an opaque quad behind a fully cut-out one
+  emissive-texture.gltf        an emissiveTexture (tests/gpu/test_gpu_emissive_texture.cpp): a lamp
+                               quad seen straight on, and a panel of the same material over a floor
 
 Deterministic: running it again writes byte-identical files.
 Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
@@ -324,6 +335,135 @@ def extensions(out):
     g.write_gltf(out / "extensions.gltf")
 
 
+TEXTURE_4 = [[(40 + 60 * x, 40 + 60 * y, 200 - 50 * x, 255) for x in range(4)] for y in range(4)]
+# metallicRoughness: G = roughness 1 everywhere, B = metallic 0 or 1 in a 2x2 checker.
+TEXTURE_MR = [[(0, 255, 0, 255), (0, 255, 255, 255)], [(0, 255, 255, 255), (0, 255, 0, 255)]]
+TEXTURE_NORMAL = [[(255, 128, 255, 255)]]  # tangent-space (1, 0.004, 1): tilted about 39 degrees at scale 0.8
+
+
+def data_png(width, height, rgba):
+    return "data:image/png;base64," + base64.b64encode(png(width, height, rgba)).decode()
+
+
+def textures(out):
+    """Eight 2 x 2 quads in the plane z = 0 facing +z, side by side (quad i at x in [2.5 i, 2.5 i + 2],
+    y in [0, 2]); UV (-0.75, -0.75) at the top left corner, (1.75, 1.75) at the bottom right, so that
+    every wrap mode shows. Materials: metallic 0, roughness 1, specularFactor 0 (the Lambertian base
+    alone), baseColorFactor (1, 0.5, 1, 1) times the texture."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_texture_transform"]
+    g.doc["images"] = [{"uri": data_png(4, 4, TEXTURE_4)}, {"uri": data_png(2, 2, TEXTURE_MR)},
+                       {"uri": data_png(1, 1, TEXTURE_NORMAL)}]
+    nearest, linear, repeat, clamp, mirror = 9728, 9729, 10497, 33071, 33648
+    g.doc["samplers"] = [{"magFilter": nearest, "wrapS": repeat, "wrapT": repeat},
+                         {"magFilter": nearest, "wrapS": clamp, "wrapT": clamp},
+                         {"magFilter": nearest, "wrapS": mirror, "wrapT": mirror},
+                         {"magFilter": linear, "wrapS": repeat, "wrapT": mirror},
+                         {"magFilter": nearest, "wrapS": clamp, "wrapT": repeat}]
+    g.doc["textures"] = [{"source": 0, "sampler": i} for i in range(5)] + [{"source": 1, "sampler": 0},
+                                                                          {"source": 2, "sampler": 0}]
+
+    def mat(name, base_texture, **extra):
+        pbr = {"baseColorFactor": [1, 0.5, 1, 1], "metallicFactor": 0, "roughnessFactor": 1,
+               "baseColorTexture": base_texture}
+        pbr.update(extra.pop("pbr", {}))
+        m = {"name": name, "pbrMetallicRoughness": pbr,
+             "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+        m.update(extra)
+        return m
+    g.doc["materials"] = [
+        mat("repeat", {"index": 0}), mat("clamp", {"index": 1}), mat("mirror", {"index": 2}),
+        mat("transform", {"index": 4, "extensions": {"KHR_texture_transform": {
+            "offset": [0.25, -0.5], "rotation": 0.5, "scale": [1.5, 0.75]}}}),
+        mat("bilinear", {"index": 3}),
+        mat("metalrough", {"index": 0}, pbr={"metallicFactor": 1, "metallicRoughnessTexture": {"index": 5}}),
+        mat("normal", {"index": 0}, normalTexture={"index": 6, "scale": 0.8}),
+        mat("normal-flat", {"index": 0}, normalTexture={"index": 6, "scale": 0.8}),  # a mesh without NORMAL
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        if m["name"] != "normal-flat":
+            attrs["NORMAL"] = g.accessor([0, 0, 1] * 4, FLOAT, "VEC3")
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "textures.gltf")
+
+
+def alpha(out):
+    """Quads as in textures(): 0 "mask" (MASK, cutoff 0.5, factor alpha 0.6 x texture alpha 1 or
+    128/255: solid or a hole in a checker), 1 "blend" (BLEND, alpha 0.25), 2 "back" (opaque grey)
+    at z = 0 behind 3 "ghost" (MASK, alpha 0.2: cut out everywhere) at z = 0.5, larger than it."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+    holes = [[(40 + 60 * x, 40 + 60 * y, 200 - 50 * x, 255 if (x + y) % 2 == 0 else 128) for x in range(4)]
+             for y in range(4)]
+    g.doc["images"] = [{"uri": data_png(4, 4, holes)}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+
+    def mat(name, factor, **extra):
+        pbr = {"baseColorFactor": factor, "metallicFactor": 0, "roughnessFactor": 1}
+        pbr.update(extra.pop("pbr", {}))
+        m = {"name": name, "pbrMetallicRoughness": pbr, "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+        m.update(extra)
+        return m
+    g.doc["materials"] = [
+        mat("mask", [1, 0.5, 1, 0.6], alphaMode="MASK", alphaCutoff=0.5, pbr={"baseColorTexture": {"index": 0}}),
+        mat("blend", [1, 0.5, 1, 0.25], alphaMode="BLEND"),
+        mat("back", [0.6, 0.6, 0.6, 1]),
+        mat("ghost", [1, 1, 1, 0.2], alphaMode="MASK"),
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    quads = [(0.0, 0.0, 0.0, 2.0), (2.5, 0.0, 0.0, 2.0), (5.0, 0.0, 0.0, 2.0), (4.9, -0.1, 0.5, 2.2)]  # x0, y0, z, size
+    for i, (x0, y0, z, size) in enumerate(quads):
+        pos = [(x0, y0 + size, z), (x0 + size, y0 + size, z), (x0 + size, y0, z), (x0, y0, z)]
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": g.doc["materials"][i]["name"], "primitives": [{
+            "attributes": attrs, "material": i, "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "alpha.gltf")
+
+
+def emissive_texture(out):
+    """Quad "lamp" as in textures() (x in [0, 2], y in [0, 2], z = 0, facing +z) with emissiveFactor
+    (1, 0.5, 1) x strength 2 x the 4x4 colour texture (nearest, repeat); a "panel" of the same
+    material (y = -3, x in [11, 13], z in [-1, 1], facing down) over a grey Lambertian floor
+    (y = -5, x in [9, 15], z in [-3, 3]), out of the first camera's view."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_emissive_strength"]
+    g.doc["images"] = [{"uri": data_png(4, 4, TEXTURE_4)}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 10497, "wrapT": 10497}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [
+        {"name": "lamp", "emissiveFactor": [1, 0.5, 1], "emissiveTexture": {"index": 0},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
+    ]
+    uv = [-0.75, -0.75, 1.75, -0.75, 1.75, 1.75, -0.75, 1.75]
+    quads = [("lamp", 0, [(0, 2, 0), (2, 2, 0), (2, 0, 0), (0, 0, 0)]),
+             ("panel", 0, [(11, -3, 1), (13, -3, 1), (13, -3, -1), (11, -3, -1)]),   # faces -y
+             ("floor", 1, [(9, -5, -3), (15, -5, -3), (15, -5, 3), (9, -5, 3)])]     # faces +y
+    for name, material, pos in quads:
+        attrs = {"POSITION": g.positions(pos), "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": name, "primitives": [{"attributes": attrs, "material": material,
+                                                       "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": q[0], "mesh": i} for i, q in enumerate(quads)]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2]}]
+    g.write_gltf(out / "emissive-texture.gltf")
+
+
 def grid(triangles, path):
     """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
     n = max(1, math.ceil(math.sqrt(triangles / 2)))
@@ -373,7 +513,7 @@ def main():
         return
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
-    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions):
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture):
         write(out)
 
 

@@ -91,7 +91,8 @@ double envMeanLuminance(const Scene& scene) {
 double envPickProbability(const Scene& scene) {
     if (!hasEnvironmentLight(scene)) return 0.0;
     double emitters = 0.0;
-    for (std::uint32_t shape : scene.lights) emitters += lightPower(scene, shape);
+    const std::vector<glm::dvec3> scales = emissionScales(scene);
+    for (std::uint32_t shape : scene.lights) emitters += lightPower(scene, shape, &scales);
     if (!(emitters > 0.0)) return 1.0;
     const double r = sceneRadius(scene);
     const double env = 4.0 * kPi * r * r * envMeanLuminance(scene);

@@ -1,6 +1,7 @@
 #include "render/features.h"
 
 #include "render/environment.h"
+#include "render/texture_pack.h"
 
 namespace vkp {
 
@@ -24,7 +25,8 @@ bool parseSampler(const std::string& name, Sampler& out) {
 
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr};
+            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
+            vertexAttributes, textures, alpha};
 }
 
 std::string Features::name() const {
@@ -53,6 +55,9 @@ std::string Features::name() const {
     out += samplerName(sampler);
     if (defocus) out += " defocus";
     if (environment) out += environmentMap ? " env:map" : " env:constant";
+    if (vertexAttributes) out += " vertex-attributes";
+    if (textures) out += " textures";
+    if (alpha) out += " alpha";
     return out;
 }
 
@@ -62,6 +67,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
+        f.vertexAttributes = f.textures = f.alpha = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -82,6 +88,9 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     f.defocus = scene.camera.defocusAngle > 0.0f;
     f.environment = hasEnvironmentLight(scene);
     f.environmentMap = scene.environment.hasMap();
+    f.textures = sceneHasTextures(scene);
+    f.alpha = sceneHasAlpha(scene);
+    f.vertexAttributes = f.textures || f.alpha || sceneHasVertexAttributes(scene);  // textures need the UVs
     return f;
 }
 

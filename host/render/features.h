@@ -24,9 +24,12 @@ struct Features {
     bool defocus = false;
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
+    bool vertexAttributes = false;  ///< mesh triangles shade with UVs / interpolated normals (render/texture_pack.h)
+    bool textures = false;          ///< some material reads a texture
+    bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     Sampler sampler = Sampler::Mis;
 
-    /// Values for constant_id 0..12, in the order of shaders/lib/bindings.glsl.
+    /// Values for constant_id 0..15, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

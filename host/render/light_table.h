@@ -12,8 +12,14 @@ namespace vkp {
 /// Emitted power of a sampled shape, up to the factor pi shared by all diffuse emitters:
 /// luminance(emit) * area * (number of emitting faces: 2 for an emitting lambertian or a
 /// two-sided diffuse_light, else 1). 0 for an object that does not emit.
-/// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722).
-double lightPower(const Scene& scene, std::uint32_t shape);
+/// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722). An emissive texture scales emit by
+/// its image's mean (emissionScales; computed for this shape alone when scales is null).
+double lightPower(const Scene& scene, std::uint32_t shape, const std::vector<glm::dvec3>* scales = nullptr);
+
+/// Per material, the mean linear RGB of its emissive texture over the whole image (sRGB decoded;
+/// wrap and KHR_texture_transform ignored), (1, 1, 1) without one: the light pick's estimate of a
+/// textured emitter's power. Only the pick probabilities (variance) depend on it, never the mean.
+std::vector<glm::dvec3> emissionScales(const Scene& scene);
 
 /// Alias table for the discrete distribution `weights` (non-negative, any scale; all zero gives
 /// an empty table). threshold[i] in [0,1], alias[i] < n; the probability of i is

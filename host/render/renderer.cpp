@@ -11,6 +11,7 @@
 #include "render/ggx_albedo_table.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
+#include "render/texture_pack.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
@@ -31,6 +32,9 @@ enum : std::uint32_t {
     kBindingEnvDist,
     kBindingDecision,
     kBindingActive,
+    kBindingAttributes,  // lib/surface.glsl
+    kBindingTexInfo,
+    kBindingTexels,
 };
 
 template <class T>
@@ -66,7 +70,9 @@ Image PixelSums::varianceOfMean() const {
 
 struct Renderer::Impl {
     std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, envTexels, envDist, decision, active;
+    std::unique_ptr<GpuBuffer> attributes, texInfo, texels;
     vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
+    vk::raii::BufferView attributesView{nullptr}, texInfoView{nullptr}, texelsView{nullptr};
     vk::raii::BufferView envTexelsView{nullptr}, envDistView{nullptr};
     std::unique_ptr<ComputePipeline> pipeline;
 };
@@ -91,6 +97,16 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
         throw VulkanError("environment map too large for this device: " + std::to_string(env.width) + "x" +
                           std::to_string(env.height) + " needs " + std::to_string(env.distribution.size()) +
                           " texels, more than maxTexelBufferElements = " + std::to_string(texelLimit));
+    // Textures and vertex attributes (lib/surface.glsl): only what the variant reads is uploaded
+    // in full; the others get a token texel.
+    TexturePack tex;
+    if (features_.textures || features_.alpha) tex = packTextures(scene);
+    if (tex.info.empty()) tex.info.assign(1, glm::uvec4(0));
+    if (tex.texels.empty()) tex.texels.assign(1, 0u);
+    std::vector<glm::uvec4> attributes(1, glm::uvec4(0));
+    if (features_.vertexAttributes) attributes = packVertexAttributes(scene, bvh.primToShape);
+    if (const std::string problem = texelLimitProblem(scene, tex, attributes.size(), texelLimit); !problem.empty())
+        throw VulkanError(problem);
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
@@ -119,6 +135,12 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->envDist = uploadTexels(device, env.distribution);
     impl_->envTexelsView = impl_->envTexels->texelView();
     impl_->envDistView = impl_->envDist->texelView(vk::Format::eR32Sfloat);
+    impl_->attributes = uploadTexels(device, attributes);
+    impl_->texInfo = uploadTexels(device, tex.info);
+    impl_->texels = uploadTexels(device, tex.texels);
+    impl_->attributesView = impl_->attributes->texelView();
+    impl_->texInfoView = impl_->texInfo->texelView();
+    impl_->texelsView = impl_->texels->texelView(vk::Format::eR32Uint);
 
     // Two vec4 per pixel: the sum and its compensation (shaders/shared/compensated_sum.h).
     const std::size_t pixelBytes = std::size_t(width_) * height_ * 2 * 4 * sizeof(float);
@@ -148,7 +170,9 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer,
                      vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer};
+                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
+                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
+                     vk::DescriptorType::eUniformTexelBuffer};
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
@@ -165,6 +189,9 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     p.bindTexelView(kBindingEnvDist, *impl_->envDistView);
     p.bindBuffer(kBindingDecision, impl_->decision->buffer());
     p.bindBuffer(kBindingActive, impl_->active->buffer());
+    p.bindTexelView(kBindingAttributes, *impl_->attributesView);
+    p.bindTexelView(kBindingTexInfo, *impl_->texInfoView);
+    p.bindTexelView(kBindingTexels, *impl_->texelsView);
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 

@@ -16,6 +16,10 @@
 /// (host/render/ggx_albedo_table.cpp, renderer.cpp).
 vec4 ggxAlbedoFetch(uint t) { return fetchF(uMaterials, int(frame.counts.w + t)); }
 
+/// With shading normals (lib/surface.glsl): true if dir leaves on the other side of the geometric
+/// surface than the viewer (ns faces the viewer); such directions get f = 0.
+bool belowGeometric(vec3 dir, vec3 ns) { return HAS_VERTEX_ATTRIBUTES && !(dot(dir, ns) > 0.0f); }
+
 /// Next-event estimation towards the environment (picked with probability pick) from a MAT_PBR
 /// vertex: f cos L w / (pick pdf) if the shadow ray to infinity escapes, w the power heuristic
 /// against the BRDF sample (light and mis alike, see above).
@@ -25,7 +29,7 @@ vec3 envDirectLightPbr(vec3 xo, vec3 ns, Onb f, GltfBrdf b, vec3 v, vec2 u, floa
     float pdf;
     vec3 dir = sampleEnv(ns, u, pdf, passes);
     vec3 l = toLocal(f, dir);
-    if (!(pdf > 0.0f) || !(l.z > 0.0f)) return vec3(0.0f);
+    if (!(pdf > 0.0f) || !(l.z > 0.0f) || belowGeometric(dir, ns)) return vec3(0.0f);
     vec3 le = envRadiance(dir);
     if (!(max(le.x, max(le.y, le.z)) > 0.0f)) return vec3(0.0f);
     rays++;
@@ -34,13 +38,15 @@ vec3 envDirectLightPbr(vec3 xo, vec3 ns, Onb f, GltfBrdf b, vec3 v, vec2 u, floa
     return evalGltfBrdf(b, v, l) * l.z * le * (powerHeuristic(pl, pdfGltfBrdf(b, v, l)) / pl);
 }
 
-/// Scatter at a MAT_PBR hit x (shading normal ns facing the incoming ray, primitive prim/p, surface
-/// parameters ab): adds next-event estimation to s.radiance, sets s.o, the new direction newDir,
-/// s.throughput and the MIS state. Returns true when the path ends (no valid direction: f = 0).
-bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab, vec3 x, vec3 ns, out vec3 newDir,
+/// Scatter at a MAT_PBR hit x (geometric normal ns facing the incoming ray, shading normal nShade
+/// from lib/surface.glsl (ns without one), primitive prim/p, surface parameters ab). The BRDF
+/// lives in nShade's frame; directions below the geometric surface get f = 0 (no light leaks).
+/// Adds next-event estimation to s.radiance, sets s.o, the new direction newDir, s.throughput and
+/// the MIS state. Returns true when the path ends (no valid direction: f = 0).
+bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab, vec3 x, vec3 ns, vec3 nShade, out vec3 newDir,
                 inout uint rays, inout uint passes) {
     GltfBrdf b = makeGltfBrdf(m.m0.xyz, m.m3.x, m.m3.y, m.m2.w, m.m2.xyz);
-    Onb f = onbFromNormal(ns);
+    Onb f = onbFromNormal(nShade);
     vec3 v = toLocal(f, -s.d);
     float uStrategy = rngNext(s.rng);
     vec3 u3 = vec3(rngNext(s.rng), rngNext2(s.rng));
@@ -62,9 +68,10 @@ bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab,
         LightSample ls = sampleLightPrim(lp, x, uLight);
         vec3 lLight = toLocal(f, ls.dir);
         bool self = lprim == prim && primKind(p) != PRIM_SPHERE;
-        if (!toEnv && ls.pdf > 0.0f && lLight.z > 0.0f && !self) {
+        if (!toEnv && ls.pdf > 0.0f && lLight.z > 0.0f && !belowGeometric(ls.dir, ns) && !self) {
             GpuMaterial lm = fetchMaterial(primMaterial(lp));
             vec3 lx = x + ls.dist * ls.dir;
+            emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
             vec3 nl = primNormal(lp, lx);
             vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, nl);
             if (max(le.x, max(le.y, le.z)) > 0.0f) {
@@ -101,7 +108,7 @@ bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab,
         l = sampleGltfBrdf(b, v, u3, pdf);
         newDir = toWorld(f, l);
     }
-    if (!(l.z > 0.0f) || !(pdf > 0.0f)) return true;  // below the surface: f = 0
+    if (!(l.z > 0.0f) || !(pdf > 0.0f) || belowGeometric(newDir, ns)) return true;  // below the surface: f = 0
     s.throughput *= evalGltfBrdf(b, v, l) * (l.z / pdf);
     if (nee) {
         // light and mis: the emission this sample finds is weighted against the light sample.

@@ -4,8 +4,9 @@
 // The includer defines, BEFORE including this file (it declares no bindings):
 //   GpuNode fetchNode(uint i);   // node i of the flattened BVH (host/bvh/flatten.h, 4 texels)
 //   GpuPrim fetchPrim(uint i);   // primitive i (3 texels)
-// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false (shared/intersect.h) and
-// VKP_MAX_PASSES.
+// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false (shared/intersect.h),
+// VKP_MAX_PASSES, and VKP_ANY_HIT(primIndex, prim, ab, o, d): false rejects a candidate hit (alpha
+// cut-outs and stochastic transparency, lib/alpha.glsl).
 //
 // Algorithm: binary nodes holding both children's boxes; each step tests the two boxes, tests the
 // primitives of every hit leaf child at once (one inner loop), then descends into the nearer hit
@@ -67,7 +68,11 @@ bool vkpTraverse(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out 
             passes += 1u;
             uint p = (i < nl) ? il + i : ir + (i - nl);
             vec2 ab;
-            float th = intersectPrim(fetchPrim(p), o, d, tmin, t, ab);
+            GpuPrim pr = fetchPrim(p);
+            float th = intersectPrim(pr, o, d, tmin, t, ab);
+#ifdef VKP_ANY_HIT
+            if (th < t && !VKP_ANY_HIT(p, pr, ab, o, d)) th = VKP_FAR;  // a hole or passed through (lib/alpha.glsl)
+#endif
             if (th < t) {
                 t = th;
                 primIndex = p;

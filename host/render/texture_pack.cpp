@@ -1,0 +1,163 @@
+#include "render/texture_pack.h"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "shared/texture_sample.h"
+
+namespace vkp {
+
+namespace {
+std::uint32_t bits(float f) { return std::bit_cast<std::uint32_t>(f); }
+
+std::uint32_t wrapFlag(TextureWrap w) {
+    switch (w) {
+        case TextureWrap::ClampToEdge: return gpu::TEXF_WRAP_CLAMP;
+        case TextureWrap::MirroredRepeat: return gpu::TEXF_WRAP_MIRROR;
+        default: return gpu::TEXF_WRAP_REPEAT;
+    }
+}
+
+/// The two texels of one texture slot: (rotation x scale) and (offset, header index or kNoTexture).
+void packSlot(const TextureRef& r, glm::uvec4* out) {
+    const float c = std::cos(r.rotation), s = std::sin(r.rotation);
+    out[0] = glm::uvec4(bits(c * r.scale.x), bits(s * r.scale.y), bits(-s * r.scale.x), bits(c * r.scale.y));
+    out[1] = glm::uvec4(bits(r.offset.x), bits(r.offset.y), r.valid() ? std::uint32_t(r.texture) : kNoTexture, 0u);
+}
+
+/// The emissive texture the kernel applies to `original` (a glTF emitter becomes a diffuse_light).
+TextureRef emissiveTextureOf(const Material& original) {
+    if (original.type == MaterialType::Pbr && kernelMaterial(original).type == MaterialType::DiffuseLight)
+        return original.pbr.emissiveTexture;
+    return TextureRef{};
+}
+
+bool materialReadsTextures(const Material& original) {
+    const Material m = kernelMaterial(original);
+    if (m.type == MaterialType::Pbr)
+        return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid();
+    return emissiveTextureOf(original).valid();
+}
+
+std::vector<bool> usedMaterials(const Scene& scene) {
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const Shape& s : scene.shapes) used[s.material] = true;
+    return used;
+}
+}  // namespace
+
+bool sceneHasTextures(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (used[i] && materialReadsTextures(scene.materials[i])) return true;
+    return false;
+}
+
+bool sceneHasAlpha(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material m = kernelMaterial(scene.materials[i]);
+        if (m.type == MaterialType::Pbr && m.pbr.alphaMode != AlphaMode::Opaque) return true;
+    }
+    return false;
+}
+
+bool sceneHasVertexAttributes(const Scene& scene) {
+    std::vector<int> pbr(scene.materials.size(), -1);
+    for (const Shape& s : scene.shapes) {
+        if (s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) continue;
+        int& p = pbr[s.material];
+        if (p < 0) p = kernelMaterial(scene.materials[s.material]).type == MaterialType::Pbr ? 1 : 0;
+        const std::uint32_t f = scene.triangleVertices.at(s.attributes).flags;
+        if (p == 1 && (f & (TriangleVertices::kHasNormal | TriangleVertices::kHasUv))) return true;
+    }
+    return false;
+}
+
+TexturePack packTextures(const Scene& scene) {
+    TexturePack out;
+    const std::uint32_t nm = std::uint32_t(scene.materials.size());
+    const std::uint32_t headerBase = 1 + kMatTexTexels * nm;
+    out.info.assign(headerBase + scene.textures.size(), glm::uvec4(0));
+    out.info[0] = glm::uvec4(headerBase, nm, std::uint32_t(scene.textures.size()), 0u);
+    for (std::uint32_t i = 0; i < nm; ++i) {
+        const Material m = kernelMaterial(scene.materials[i]);
+        glm::uvec4* rec = &out.info[1 + kMatTexTexels * i];
+        const bool pbr = m.type == MaterialType::Pbr;
+        const TextureRef none;
+        packSlot(pbr ? m.pbr.baseColorTexture : none, rec + 2 * kTexSlotBaseColor);
+        packSlot(pbr ? m.pbr.metallicRoughnessTexture : none, rec + 2 * kTexSlotMetallicRoughness);
+        packSlot(pbr ? m.pbr.normalTexture : none, rec + 2 * kTexSlotNormal);
+        packSlot(emissiveTextureOf(scene.materials[i]), rec + 2 * kTexSlotEmissive);
+        rec[2 * kTexSlots] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
+                                        bits(m.pbr.baseColor.w));
+    }
+    std::vector<std::uint32_t> imageStart(scene.images.size(), 0);
+    for (std::size_t i = 0; i < scene.images.size(); ++i) {
+        const TextureImage& img = scene.images[i];
+        imageStart[i] = std::uint32_t(out.texels.size());
+        const std::size_t n = std::size_t(img.width) * img.height;
+        const std::size_t start = out.texels.size();
+        out.texels.resize(start + n);
+        if (n > 0) std::memcpy(out.texels.data() + start, img.rgba8.data(), n * 4);  // R in the low byte
+    }
+    for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+        const Texture& tex = scene.textures[t];
+        const TextureImage& img = scene.images.at(tex.image);
+        std::uint32_t flags = wrapFlag(tex.wrapS) | (wrapFlag(tex.wrapT) << 2u);
+        if (tex.srgb) flags |= gpu::TEXF_SRGB;
+        if (tex.nearest) flags |= gpu::TEXF_NEAREST;
+        out.info[headerBase + t] = glm::uvec4(imageStart[tex.image], img.width, img.height, flags);
+    }
+    if (out.texels.empty()) out.texels.push_back(0u);
+    return out;
+}
+
+std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::size_t attributeTexels, std::uint64_t limit) {
+    const std::string tail = ", more than this device's maxTexelBufferElements = " + std::to_string(limit);
+    if (pack.texels.size() > limit || pack.info.size() > limit) {
+        std::size_t big = 0;
+        for (std::size_t i = 1; i < scene.images.size(); ++i)
+            if (std::uint64_t(scene.images[i].width) * scene.images[i].height >
+                std::uint64_t(scene.images[big].width) * scene.images[big].height)
+                big = i;
+        std::string largest;
+        if (!scene.images.empty())
+            largest = ", the largest \"" + scene.images[big].name + "\" " + std::to_string(scene.images[big].width) + "x" +
+                      std::to_string(scene.images[big].height);
+        return scene.path.string() + ": textures: " + std::to_string(scene.images.size()) + " images need " +
+               std::to_string(pack.texels.size()) + " texels" + largest + tail;
+    }
+    if (attributeTexels > limit)
+        return scene.path.string() + ": the vertex attributes (UVs, normals, tangents) of the scene's primitives need " +
+               std::to_string(attributeTexels) + " texels" + tail;
+    return {};
+}
+
+std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vector<std::uint32_t>& primToShape) {
+    std::vector<glm::uvec4> out(std::max<std::size_t>(primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
+    const MeshVertices& mv = scene.vertices;
+    for (std::size_t i = 0; i < primToShape.size(); ++i) {
+        const Shape& s = scene.shapes[primToShape[i]];
+        if (s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) continue;
+        const TriangleVertices& tv = scene.triangleVertices.at(s.attributes);
+        glm::uvec4* rec = &out[i * kAttributeTexels];
+        glm::vec2 uv[3] = {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)};
+        if ((tv.flags & TriangleVertices::kHasUv) && !mv.uv.empty())
+            for (int k = 0; k < 3; ++k) uv[k] = mv.uv.at(tv.v[k]);
+        rec[0] = glm::uvec4(bits(uv[0].x), bits(uv[0].y), bits(uv[1].x), bits(uv[1].y));
+        rec[1] = glm::uvec4(bits(uv[2].x), bits(uv[2].y), tv.flags, 0u);
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 n = (tv.flags & TriangleVertices::kHasNormal) ? mv.normal.at(tv.v[k]) : glm::vec3(0.0f);
+            rec[2 + k] = glm::uvec4(bits(n.x), bits(n.y), bits(n.z), 0u);
+            glm::vec4 t(0.0f);
+            if ((tv.flags & TriangleVertices::kHasTangent) && !mv.tangent.empty()) t = mv.tangent.at(tv.v[k]);
+            rec[5 + k] = glm::uvec4(bits(t.x), bits(t.y), bits(t.z), bits(t.w));
+        }
+    }
+    return out;
+}
+
+}  // namespace vkp

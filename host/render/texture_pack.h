@@ -1,0 +1,52 @@
+// Packing glTF textures and per-vertex attributes for the kernel (shaders/lib/surface.glsl).
+// Texel layouts are documented in shaders/shared/texture_sample.h and surface.glsl.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace vkp {
+
+/// Texture slots of a material record, in this order (shaders/lib/surface.glsl SLOT_*).
+inline constexpr std::uint32_t kTexSlotBaseColor = 0, kTexSlotMetallicRoughness = 1, kTexSlotNormal = 2,
+                               kTexSlotEmissive = 3, kTexSlots = 4;
+/// Texels of one material record: two per slot (transform; offset + header index) and one more
+/// (alpha mode, alpha cutoff, normal scale, base colour alpha).
+inline constexpr std::uint32_t kMatTexTexels = 2 * kTexSlots + 1;
+/// Texels of one primitive's vertex-attribute record: uv0 uv1 | uv2 flags | n0 | n1 | n2 | t0 | t1 | t2.
+inline constexpr std::uint32_t kAttributeTexels = 8;
+inline constexpr std::uint32_t kNoTexture = 0xffffffffu;
+
+struct TexturePack {
+    /// RGBA32UI: [0] = (first texture header, material count, texture count, 0); material m's record
+    /// at 1 + kMatTexTexels m; texture t's header (shared/texture_sample.h) at info[0].x + t.
+    std::vector<glm::uvec4> info;
+    /// R32UI: every image's RGBA8 texels, one after the other (never empty: a token texel).
+    std::vector<std::uint32_t> texels;
+};
+
+/// The textures and per-material texture records of `scene` (kernel materials: kernelMaterial).
+TexturePack packTextures(const Scene& scene);
+
+/// One kAttributeTexels record per BVH primitive (primToShape order): UVs, shading normals and
+/// tangents of mesh triangles; zeros (flags 0: no attributes) for every other primitive.
+std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vector<std::uint32_t>& primToShape);
+
+/// Empty if the packed textures (pack) and vertex-attribute records (attributeTexels texels) fit
+/// texel buffers of at most `limit` elements (maxTexelBufferElements); else the one line that
+/// refuses the scene, naming its file, the counts and the largest image.
+std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::size_t attributeTexels, std::uint64_t limit);
+
+/// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).
+bool sceneHasTextures(const Scene& scene);
+/// True if some kernel material of a shape has alphaMode MASK or BLEND (HAS_ALPHA).
+bool sceneHasAlpha(const Scene& scene);
+/// True if some mesh triangle with a MAT_PBR kernel material has NORMAL or TEXCOORD_0
+/// (HAS_VERTEX_ATTRIBUTES).
+bool sceneHasVertexAttributes(const Scene& scene);
+
+}  // namespace vkp

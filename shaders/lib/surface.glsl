@@ -1,0 +1,141 @@
+// Surface attributes of glTF mesh triangles at a hit: UV (TEXCOORD_0), interpolated shading normal,
+// normal map, and the textures of MAT_PBR materials. Compiled in only for scenes that need it
+// (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES; host/render/features.cpp). Included by pathtrace.comp.
+//
+// Buffers (host/render/texture_pack.h; binding numbers must match host/render/renderer.cpp):
+//   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, 0) | n0 | n1 | n2 |
+//                           t0 | t1 | t2 (flags: TriangleVertices::kHas*; zeros for other primitives);
+//   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at 1 + 9 m: per
+//                           slot (SLOT_*) the transform (rotation x scale) and (offset, header index
+//                           or 0xffffffff, 0), then (alpha mode, cutoff, normal scale, alpha factor);
+//                           texture headers as in shared/texture_sample.h;
+//   uTexels     (R32UI):    RGBA8 texels of every image.
+//
+// Shading normals: the interpolated NORMAL (and the normal map) only orient the BRDF's frame. They
+// are turned to the side of the geometric normal the ray arrived on, and when the viewer would be
+// below the shading hemisphere the geometric normal is used instead. Directions on the other side
+// of the geometric surface than the viewer get f = 0 (lib/scatter_pbr.glsl), so no light leaks
+// through a surface whose shading normal leans over its horizon.
+#ifndef VKP_SURFACE_GLSL
+#define VKP_SURFACE_GLSL
+#include "lib/bindings.glsl"
+#include "shared/intersect.h"
+
+layout(constant_id = 13) const bool HAS_VERTEX_ATTRIBUTES = true;  // UVs and shading normals of mesh triangles
+layout(constant_id = 14) const bool HAS_TEXTURES = true;           // materials read textures
+
+layout(set = 0, binding = 12) uniform usamplerBuffer uAttributes;
+layout(set = 0, binding = 13) uniform usamplerBuffer uTexInfo;
+layout(set = 0, binding = 14) uniform usamplerBuffer uTexels;
+
+#define VKP_TEXEL_FETCH(i) texelFetch(uTexels, int(i)).x
+#include "shared/texture_sample.h"
+
+const uint ATTR_TEXELS = 8u;
+const uint ATTR_HAS_NORMAL = 1u;  // TriangleVertices flags (host/scene/scene.h)
+const uint ATTR_HAS_UV = 2u;
+const uint ATTR_HAS_TANGENT = 4u;
+const uint MAT_TEX_TEXELS = 9u;
+const uint SLOT_BASE_COLOR = 0u;
+const uint SLOT_METALLIC_ROUGHNESS = 1u;
+const uint SLOT_NORMAL = 2u;
+const uint SLOT_EMISSIVE = 3u;
+const uint NO_TEXTURE = 0xffffffffu;
+
+/// Sample texture slot `slot` of the material record at `rec` at uv; false if the slot is empty.
+bool sampleSlot(uint rec, uint slot, vec2 uv, out vec4 c) {
+    c = vec4(1.0f);
+    uvec4 t1 = texelFetch(uTexInfo, int(rec + 2u * slot + 1u));
+    if (t1.z == NO_TEXTURE) return false;
+    vec4 rs = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * slot)));
+    uint headerBase = texelFetch(uTexInfo, 0).x;
+    c = texSample(texelFetch(uTexInfo, int(headerBase + t1.z)), texTransform(uv, rs, uintBitsToFloat(t1.xy)));
+    return true;
+}
+
+/// At a hit on primitive `prim` (p, surface parameters ab, geometric normal ns facing the incoming
+/// direction d, material index mi): applies the textures of a MAT_PBR material m (base colour x
+/// texture RGB, metallic x B, roughness x G) and returns the shading normal (ns where there is
+/// none, see above).
+vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout GpuMaterial m) {
+    if (!HAS_VERTEX_ATTRIBUTES || primKind(p) != PRIM_TRIANGLE) return ns;
+    int base = int(prim * ATTR_TEXELS);
+    vec4 a0 = fetchF(uAttributes, base);
+    vec4 a1 = fetchF(uAttributes, base + 1);
+    uint flags = floatBitsToUint(a1.z);
+    float w0 = 1.0f - ab.x - ab.y;
+    vec3 n = ns;
+    bool hasN = (flags & ATTR_HAS_NORMAL) != 0u;
+    if (hasN) {
+        vec3 ni = w0 * fetchF(uAttributes, base + 2).xyz + ab.x * fetchF(uAttributes, base + 3).xyz +
+                  ab.y * fetchF(uAttributes, base + 4).xyz;
+        float len = length(ni);
+        hasN = len > 0.0f;
+        if (hasN) n = ni / len;  // the file's orientation (turned to the ray's side below)
+    }
+    uint mtype = floatBitsToUint(m.m0.w) & 15u;
+    if (HAS_TEXTURES && mtype == MAT_PBR && (flags & ATTR_HAS_UV) != 0u) {
+        vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
+        uint rec = 1u + MAT_TEX_TEXELS * mi;
+        vec4 c;
+        if (sampleSlot(rec, SLOT_BASE_COLOR, uv, c)) m.m0.xyz *= c.xyz;
+        if (sampleSlot(rec, SLOT_METALLIC_ROUGHNESS, uv, c)) {
+            m.m3.x *= c.z;  // metallic in B
+            m.m3.y *= c.y;  // roughness in G
+        }
+        if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
+            // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
+            if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
+            vec4 t = w0 * fetchF(uAttributes, base + 5) + ab.x * fetchF(uAttributes, base + 6) +
+                     ab.y * fetchF(uAttributes, base + 7);
+            vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
+            float tl = length(tt);
+            if (tl > 0.0f) {
+                tt /= tl;
+                vec3 bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
+                float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * 4u)).z);
+                vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
+                vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
+                float nl = length(nm);
+                if (nl > 0.0f) {
+                    n = nm / nl;
+                    hasN = true;
+                }
+            }
+        }
+    }
+    if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & ATTR_HAS_UV) != 0u) {
+        vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
+        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, SLOT_EMISSIVE, w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy, c)) m.m1.xyz *= c.xyz;
+    }
+    if (!hasN) return ns;
+    if (dot(n, ns) < 0.0f) n = -n;              // the side the ray arrived on
+    return dot(n, d) < 0.0f ? n : ns;           // viewer below the shading horizon: geometric
+}
+
+/// The emissive texture at a point x sampled on light primitive `prim` (next-event estimation):
+/// multiplies the emission of a diffuse_light material m with an emissiveTexture by its value
+/// there; anything else is left alone.
+void emissiveTextureAt(uint prim, GpuPrim p, vec3 x, inout GpuMaterial m) {
+    if (!HAS_TEXTURES || !HAS_EMITTERS || primKind(p) != PRIM_TRIANGLE) return;
+    if ((floatBitsToUint(m.m0.w) & 15u) != MAT_DIFFUSE_LIGHT) return;
+    vec3 e1 = primEdge1(p);
+    vec3 e2 = primEdge2(p);
+    vec3 v = x - p.p0.xyz;
+    float d00 = dot(e1, e1);
+    float d01 = dot(e1, e2);
+    float d11 = dot(e2, e2);
+    float den = d00 * d11 - d01 * d01;
+    if (!(den > 0.0f)) return;
+    float a = (d11 * dot(v, e1) - d01 * dot(v, e2)) / den;  // x = v0 + a e1 + b e2
+    float b = (d00 * dot(v, e2) - d01 * dot(v, e1)) / den;
+    int base = int(prim * ATTR_TEXELS);
+    vec4 a0 = fetchF(uAttributes, base);
+    vec4 a1 = fetchF(uAttributes, base + 1);
+    if ((floatBitsToUint(a1.z) & ATTR_HAS_UV) == 0u) return;
+    vec4 c;
+    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), SLOT_EMISSIVE, (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy, c))
+        m.m1.xyz *= c.xyz;
+}
+
+#endif

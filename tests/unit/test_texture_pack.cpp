@@ -1,0 +1,48 @@
+// host/render/texture_pack.cpp: what the kernel's texture and vertex-attribute buffers hold for
+// scenes/gltf/textures.gltf, and the refusal of a scene whose texels exceed the device's limit.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "render/texture_pack.h"
+#include "scene/gltf.h"
+#include "test_paths.h"
+
+namespace vkp {
+namespace {
+
+Scene texturesScene() { return loadSceneGltf(test::scenesDir() / "gltf" / "textures.gltf"); }
+
+TEST(TexturePack, HeadersPointAtEachImagesTexels) {
+    const Scene scene = texturesScene();
+    const TexturePack pack = packTextures(scene);
+    ASSERT_EQ(pack.info[0].y, scene.materials.size());
+    ASSERT_EQ(pack.info[0].z, scene.textures.size());
+    std::size_t texels = 0;
+    for (const TextureImage& img : scene.images) texels += std::size_t(img.width) * img.height;
+    EXPECT_EQ(pack.texels.size(), texels);
+    for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+        const glm::uvec4 h = pack.info[pack.info[0].x + t];
+        const TextureImage& img = scene.images[scene.textures[t].image];
+        EXPECT_EQ(h.y, img.width);
+        EXPECT_EQ(h.z, img.height);
+        for (std::uint32_t i = 0; i < img.width * img.height; ++i)  // R in the low byte
+            ASSERT_EQ(pack.texels[h.x + i] & 255u, img.rgba8[4 * i]) << "texture " << t << " texel " << i;
+    }
+}
+
+TEST(TexturePack, RefusesTexelsBeyondTheDeviceLimit) {
+    const Scene scene = texturesScene();
+    const TexturePack pack = packTextures(scene);
+    EXPECT_EQ(texelLimitProblem(scene, pack, 8, 1u << 27), "");
+    const std::string m = texelLimitProblem(scene, pack, 8, 20);
+    EXPECT_NE(m.find("textures.gltf: textures: 3 images need 21 texels, the largest"), std::string::npos) << m;
+    EXPECT_NE(m.find("\"image 0\" 4x4, more than this device's maxTexelBufferElements = 20"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+    const std::string a = texelLimitProblem(scene, pack, 5000, 4096);
+    EXPECT_NE(a.find("vertex attributes"), std::string::npos) << a;
+    EXPECT_NE(a.find("5000 texels"), std::string::npos) << a;
+}
+
+}  // namespace
+}  // namespace vkp
