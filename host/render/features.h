@@ -16,6 +16,13 @@ inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sample
 /// "bsdf" | "light" | "mixture" | "mis" -> Sampler; false if unknown.
 bool parseSampler(const std::string& name, Sampler& out);
 
+/// Where a sample's random numbers come from (shaders/shared/sample_stream.h): independent hashed
+/// random numbers per dimension, or Owen-scrambled Sobol' points.
+enum class Sequence : std::uint32_t { Random = 0, Sobol = 1 };
+const char* sequenceName(Sequence s);
+/// "random" | "sobol" -> Sequence; false if unknown.
+bool parseSequence(const std::string& name, Sequence& out);
+
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
@@ -25,8 +32,9 @@ struct Features {
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
     Sampler sampler = Sampler::Mis;
+    Sequence sequence = Sequence::Random;
 
-    /// Values for constant_id 0..12, in the order of shaders/lib/bindings.glsl.
+    /// Values for constant_id 0..13, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

@@ -50,11 +50,17 @@
 //                 out0.xyz = evalGltfBrdf(v, l), out0.w = pdfGltfBrdf(v, l),
 //                 out1.x = ggxVisibility(v, l, alpha), out1.y = ggxG1(v, alpha),
 //                 out1.z = ggxD(normalize(v + l), alpha) (0 when v + l = 0)
+// 19 SOBOL        in0.xyzw = bits of (pixel, sampleIndex, seed, group)          (sobol.h, sample_stream.h)
+//                 out0[k] = sobolSample(sobolPixelSeed(pixel, seed), index, group, k), k = 0..3,
+//                 out1.xy = sobolSample2(same, group + 1), out1.z = first sampleNext of the stream
+//                 sampleStreamInit(pixel, index, seed, group odd) at vertex group % 10,
+//                 out1.w = sobolToFloat(sobolPixelSeed(pixel, seed)) (its top 24 bits)
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
 #include "shared/rect_sampling.h"
 #include "shared/rng.h"
+#include "shared/sample_stream.h"
 #include "shared/scatter.h"
 #include "shared/microfacet.h"
 
@@ -86,6 +92,7 @@ const uint R_RECT_LIGHT = 15u;
 const uint R_GGX_VNDF = 16u;
 const uint R_GLTF_SAMPLE = 17u;
 const uint R_GLTF_EVAL = 18u;
+const uint R_SOBOL = 19u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -189,6 +196,19 @@ void main() {
             out1 = vec4(ggxVisibility(v, l, b.alpha), ggxG1(v, b.alpha),
                         len2 > 0.0 ? ggxD(hv / sqrt(len2), b.alpha) : 0.0, 0.0);
         }
+    }
+    if (r == R_SOBOL) {
+        uint pixel = floatBitsToUint(in0.x);
+        uint index = floatBitsToUint(in0.y);
+        uint seed = floatBitsToUint(in0.z);
+        uint group = floatBitsToUint(in0.w);
+        uint ps = sobolPixelSeed(pixel, seed);
+        for (uint k = 0u; k < 4u; ++k) out0[k] = sobolSample(ps, index, group, k);
+        out1.xy = sobolSample2(ps, index, group + 1u);
+        SampleStream st = sampleStreamInit(pixel, index, seed, (group & 1u) != 0u);
+        sampleStartVertex(st, group % 10u);
+        out1.z = sampleNext(st);
+        out1.w = sobolToFloat(ps);
     }
     outData[2u * i + 0u] = out0;
     outData[2u * i + 1u] = out1;
