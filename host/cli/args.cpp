@@ -44,7 +44,7 @@ render options:
   --max-depth N           path length cap      --seed N   random seed
   --rr-depth N            Russian roulette from the Nth ray of a path on (default: the scene's, 3)
   --sampler S             bsdf | light | mixture (the book's) | mis (default)
-  --sequence Q            random (default: independent numbers) | sobol (Owen-scrambled Sobol' points)
+  --sequence Q            sobol (default: Owen-scrambled Sobol' points) | random (independent numbers)
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error

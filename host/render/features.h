@@ -17,7 +17,7 @@ inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sample
 bool parseSampler(const std::string& name, Sampler& out);
 
 /// Where a sample's random numbers come from (shaders/shared/sample_stream.h): independent hashed
-/// random numbers per dimension, or Owen-scrambled Sobol' points.
+/// random numbers per dimension, or Owen-scrambled Sobol' points (the default).
 enum class Sequence : std::uint32_t { Random = 0, Sobol = 1 };
 const char* sequenceName(Sequence s);
 /// "random" | "sobol" -> Sequence; false if unknown.
@@ -32,7 +32,7 @@ struct Features {
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
     Sampler sampler = Sampler::Mis;
-    Sequence sequence = Sequence::Random;
+    Sequence sequence = Sequence::Sobol;
 
     /// Values for constant_id 0..13, in the order of shaders/lib/bindings.glsl.
     std::vector<std::uint32_t> specConstants() const;

@@ -19,7 +19,7 @@ layout(constant_id = 9) const bool HAS_DEFOCUS = true;
 layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)
 layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
 layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
-layout(constant_id = 13) const uint SEQUENCE = 0u;   // SEQUENCE_* below (shared/sample_stream.h)
+layout(constant_id = 13) const uint SEQUENCE = 1u;   // SEQUENCE_* below (shared/sample_stream.h)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES
