@@ -19,6 +19,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/bindings.glsl"
 #include "shared/intersect.h"
 #include "shared/rng.h"
+#define VKP_SEQUENCE_SOBOL (SEQUENCE == SEQUENCE_SOBOL)
+#include "shared/sample_stream.h"
 #include "shared/onb.h"
 #include "shared/sampling.h"
 #include "shared/scatter.h"
@@ -41,7 +43,7 @@ struct PathState {
     vec3 throughput;  // product of f cos / pdf so far
     vec3 radiance;    // radiance gathered so far
     uint depth;       // rays traced along the path so far (camera ray = 1)
-    uint rng;
+    SampleStream smp; // this sample's random numbers (shared/sample_stream.h: sequence, dimension layout)
     bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
     vec3 prevX;          // mis: the diffuse vertex the current ray left from
     vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it)
@@ -63,14 +65,14 @@ vec3 emitted(GpuMaterial m, uint mflags, vec3 d, vec3 n) {
 /// over the pixel's square and, if the variant has it, a point on the defocus disk.
 PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     PathState s;
-    s.rng = rngInit(pixel, sampleIndex, frame.size.w);
-    vec2 jitter = rngNext2(s.rng) - vec2(0.5f);
+    s.smp = sampleStreamInit(pixel, sampleIndex, frame.size.w, push.adaptive.x != 0u);
+    vec2 jitter = sampleNext2(s.smp) - vec2(0.5f);
     vec3 pixel00 = vec3(frame.pixel00.x, frame.pixel00.y, frame.pixel00.z);
     vec3 du = vec3(frame.pixelDu.x, frame.pixelDu.y, frame.pixelDu.z);
     vec3 dv = vec3(frame.pixelDv.x, frame.pixelDv.y, frame.pixelDv.z);
     vec3 target = pixel00 + (float(pix.x) + jitter.x) * du + (float(pix.y) + jitter.y) * dv;
     s.o = vec3(frame.origin.x, frame.origin.y, frame.origin.z);
-    vec2 lens = rngNext2(s.rng);  // drawn in every variant, so variants see the same random numbers
+    vec2 lens = sampleNext2(s.smp);  // drawn in every variant, so variants see the same random numbers
     if (HAS_DEFOCUS) {
         vec2 disk = sampleUniformDisk(lens);
         s.o += disk.x * vec3(frame.defocusU.x, frame.defocusU.y, frame.defocusU.z) +
@@ -95,6 +97,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     vec2 ab;
     rays++;
     s.depth++;
+    sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
     bool hit = traceClosest(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, passes);
     if (!hit) {
         s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);  // lib/environment.glsl
@@ -134,8 +137,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
 
     vec3 newDir = s.d;
     if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
-        float uStrategy = rngNext(s.rng);
-        vec2 u2 = rngNext2(s.rng);
+        float uStrategy = sampleNext(s.smp);
+        vec2 u2 = sampleNext2(s.smp);
         vec3 xo = spawnRayOrigin(p, ab, x, ns);
         if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn())) {
             // Next-event estimation: the environment with probability pEnv (lib/environment.glsl),
@@ -143,7 +146,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             // it, a shadow ray.
             float pEnv = envPickProb();
             bool toEnv = uStrategy < pEnv;
-            vec2 uLight = rngNext2(s.rng);
+            vec2 uLight = sampleNext2(s.smp);
             if (toEnv) s.radiance += s.throughput * envDirectLight(xo, ns, albedo, uLight, pEnv, rays, passes);
             float pickPdf;
             float uPick = toEnv ? 0.0f : min((uStrategy - pEnv) / (1.0f - pEnv), 0.99999994f);
@@ -203,12 +206,12 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         s.o = xo;
     } else if (HAS_METAL && mtype == MAT_METAL) {
         bool absorbed;
-        newDir = scatterMetal(s.d, ns, m.m1.w, vec3(rngNext(s.rng), rngNext(s.rng), rngNext(s.rng)), absorbed);
+        newDir = scatterMetal(s.d, ns, m.m1.w, vec3(sampleNext(s.smp), sampleNext(s.smp), sampleNext(s.smp)), absorbed);
         if (absorbed) return true;
         s.throughput *= albedo;
         s.o = spawnRayOrigin(p, ab, x, ns);
     } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
-        newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, rngNext(s.rng));
+        newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, sampleNext(s.smp));
         s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
     } else if (HAS_PBR && mtype == MAT_PBR) {
         if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, newDir, rays, passes)) return true;
@@ -218,7 +221,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     // Russian roulette (unbiased): continue with probability q, divide by q.
     if (s.depth >= frame.counts.y) {
         float q = min(max(s.throughput.x, max(s.throughput.y, s.throughput.z)), 0.95f);
-        if (rngNext(s.rng) >= q) return true;
+        if (sampleNext(s.smp) >= q) return true;
         s.throughput /= q;
     }
     return false;

@@ -44,6 +44,7 @@ render options:
   --max-depth N           path length cap      --seed N   random seed
   --rr-depth N            Russian roulette from the Nth ray of a path on (default: the scene's, 3)
   --sampler S             bsdf | light | mixture (the book's) | mis (default)
+  --sequence Q            sobol (default: Owen-scrambled Sobol' points) | random (independent numbers)
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
@@ -113,6 +114,9 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--sampler") {
                 const std::string s = value(f);
                 if (!parseSampler(s, a.sampler)) usage("--sampler must be bsdf, light, mixture or mis, got '" + s + "'");
+            } else if (f == "--sequence") {
+                const std::string s = value(f);
+                if (!parseSequence(s, a.sequence)) usage("--sequence must be random or sobol, got '" + s + "'");
             } else if (f == "--variant") {
                 const std::string v = value(f);
                 if (v == "full") a.fullVariant = true;

@@ -21,6 +21,7 @@ struct CliArgs {
     std::optional<std::uint32_t> rouletteDepth;  // --rr-depth
     double timeLimit = 0.0;                      // --time SECONDS (0: none)
     Sampler sampler = Sampler::Mis;
+    Sequence sequence = Sequence::Sobol;         // --sequence random|sobol
     bool fullVariant = false;                    // --variant full
     std::string device;                          // --device N | NAME-SUBSTRING
     bool validate = false;

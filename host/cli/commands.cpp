@@ -83,6 +83,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     st.secondsSetup = since(t);
     RendererOptions ro;
     ro.sampler = a.sampler;
+    ro.sequence = a.sequence;
     ro.fullVariant = a.fullVariant;
     ro.samplesPerDispatch = a.samplesPerDispatch;
     ro.adaptiveThreshold = a.adaptiveThreshold;
@@ -140,6 +141,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.version = VKPATH_VERSION;
         st.scene = a.scene.string();
         st.sampler = samplerName(a.sampler);
+        st.sequence = sequenceName(a.sequence);
         st.variant = renderer.features().name();
         st.fullVariant = a.fullVariant;
         st.width = scene.camera.width;
@@ -185,7 +187,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
 int runInfo(const CliArgs& a) {
     const Scene scene = loadWithOverrides(a);
     const FlatBvh bvh = buildFlatBvh(scene);
-    const Features f = sceneFeatures(scene, a.sampler);
+    Features f = sceneFeatures(scene, a.sampler);
+    f.sequence = a.sequence;
     std::printf("scene        %s\n", a.scene.string().c_str());
     std::printf("image        %ux%u, %u spp, max depth %u, seed %u\n", scene.camera.width, scene.camera.height,
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);

@@ -23,10 +23,19 @@ bool parseSampler(const std::string& name, Sampler& out) {
     return true;
 }
 
+const char* sequenceName(Sequence s) { return s == Sequence::Random ? "random" : "sobol"; }
+
+bool parseSequence(const std::string& name, Sequence& out) {
+    if (name == "random") out = Sequence::Random;
+    else if (name == "sobol") out = Sequence::Sobol;
+    else return false;
+    return true;
+}
+
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures, alpha};
+            vertexAttributes, textures, alpha, std::uint32_t(sequence)};
 }
 
 std::string Features::name() const {
@@ -53,6 +62,8 @@ std::string Features::name() const {
     out += lights.empty() ? "none" : lights;
     out += " sampler:";
     out += samplerName(sampler);
+    out += " sequence:";
+    out += sequenceName(sequence);
     if (defocus) out += " defocus";
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";

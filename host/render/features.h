@@ -16,6 +16,13 @@ inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sample
 /// "bsdf" | "light" | "mixture" | "mis" -> Sampler; false if unknown.
 bool parseSampler(const std::string& name, Sampler& out);
 
+/// Where a sample's random numbers come from (shaders/shared/sample_stream.h): independent hashed
+/// random numbers per dimension, or Owen-scrambled Sobol' points (the default).
+enum class Sequence : std::uint32_t { Random = 0, Sobol = 1 };
+const char* sequenceName(Sequence s);
+/// "random" | "sobol" -> Sequence; false if unknown.
+bool parseSequence(const std::string& name, Sequence& out);
+
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
@@ -28,8 +35,10 @@ struct Features {
     bool textures = false;          ///< some material reads a texture
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     Sampler sampler = Sampler::Mis;
+    Sequence sequence = Sequence::Sobol;
 
-    /// Values for constant_id 0..15, in the order of shaders/lib/bindings.glsl.
+    /// Values for constant_id 0..16, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// lib/alpha.glsl).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

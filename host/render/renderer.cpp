@@ -88,6 +88,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       active_(scene.camera.width * scene.camera.height),
       adaptiveThreshold_(options.adaptiveThreshold),
       adaptiveMinSpp_(options.adaptiveMinSpp) {
+    features_.sequence = options.sequence;
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +

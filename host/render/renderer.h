@@ -16,6 +16,7 @@ struct FlatBvh;
 
 struct RendererOptions {
     Sampler sampler = Sampler::Mis;
+    Sequence sequence = Sequence::Sobol;  ///< where samples' random numbers come from (`--sequence`)
     bool fullVariant = false;              ///< compile every feature in (`--variant full`)
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.

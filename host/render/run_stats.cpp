@@ -67,6 +67,7 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("max_depth", num(std::uint64_t(s.maxDepth)));
     w.raw("seed", num(std::uint64_t(s.seed)));
     w.str("sampler", s.sampler);
+    w.str("sequence", s.sequence);
     w.str("variant", s.variant);
     w.raw("variant_full", s.fullVariant ? "true" : "false");
     w.raw("samples_per_dispatch", num(std::uint64_t(s.samplesPerDispatch)));

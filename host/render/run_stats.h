@@ -14,6 +14,7 @@ struct RunStats {
     std::string version;   ///< VKPATH_VERSION
     std::string scene;     ///< the scene file as given on the command line
     std::string sampler;   ///< bsdf | light | mixture
+    std::string sequence;  ///< random | sobol (--sequence)
     std::string variant;   ///< Features::name() of the pipeline
     bool fullVariant = false;
     std::uint32_t width = 0, height = 0, maxDepth = 0, seed = 0, samplesPerDispatch = 1;

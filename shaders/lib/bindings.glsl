@@ -19,6 +19,7 @@ layout(constant_id = 9) const bool HAS_DEFOCUS = true;
 layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)
 layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
 layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
+layout(constant_id = 16) const uint SEQUENCE = 1u;   // SEQUENCE_* below (shared/sample_stream.h)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES
@@ -28,6 +29,9 @@ const uint SAMPLER_BSDF = 0u;     // cosine sampling only; emission counted wher
 const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
 const uint SAMPLER_MIXTURE = 2u;  // the book: 0.5 cosine + 0.5 lights (uniform pick), one direction
 const uint SAMPLER_MIS = 3u;      // light sample + BSDF sample, power heuristic (Veach 1997)
+
+const uint SEQUENCE_RANDOM = 0u;  // independent hashed random numbers per dimension (shared/rng.h)
+const uint SEQUENCE_SOBOL = 1u;   // Owen-scrambled Sobol' points, padded (shared/sobol.h)
 
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { GpuFrame frame; };

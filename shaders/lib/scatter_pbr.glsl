@@ -48,8 +48,8 @@ bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab,
     GltfBrdf b = makeGltfBrdf(m.m0.xyz, m.m3.x, m.m3.y, m.m2.w, m.m2.xyz);
     Onb f = onbFromNormal(nShade);
     vec3 v = toLocal(f, -s.d);
-    float uStrategy = rngNext(s.rng);
-    vec3 u3 = vec3(rngNext(s.rng), rngNext2(s.rng));
+    float uStrategy = sampleNext(s.smp);
+    vec3 u3 = vec3(sampleNext(s.smp), sampleNext2(s.smp));
     vec3 xo = spawnRayOrigin(p, ab, x, ns);
     newDir = s.d;
     bool nee = (SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn());
@@ -58,7 +58,7 @@ bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab,
         // else an emitter by power), with f and the BRDF pdf.
         float pEnv = envPickProb();
         bool toEnv = uStrategy < pEnv;
-        vec2 uLight = rngNext2(s.rng);
+        vec2 uLight = sampleNext2(s.smp);
         if (toEnv) s.radiance += s.throughput * envDirectLightPbr(xo, ns, f, b, v, uLight, pEnv, rays, passes);
         float pickPdf;
         float uPick = toEnv ? 0.0f : min((uStrategy - pEnv) / (1.0f - pEnv), 0.99999994f);

@@ -57,11 +57,17 @@
 // 20 SPH_TRI_LIGHT inputs as 9 (triangle_sampling.h: solid angle, area fallback)
 //                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfTriangleLightSolidAngle(dir),
 //                 out1.z = 1 if the spherical triangle is used, else 0
+// 21 SOBOL        in0.xyzw = bits of (pixel, sampleIndex, seed, group)          (sobol.h, sample_stream.h)
+//                 out0[k] = sobolSample(sobolPixelSeed(pixel, seed), index, group, k), k = 0..3,
+//                 out1.xy = sobolSample2(same, group + 1), out1.z = first sampleNext of the stream
+//                 sampleStreamInit(pixel, index, seed, group odd) at vertex group % 10,
+//                 out1.w = sobolToFloat(sobolPixelSeed(pixel, seed)) (its top 24 bits)
 #extension GL_GOOGLE_include_directive : require
 
 #include "shared/light_sampling.h"
 #include "shared/rect_sampling.h"
 #include "shared/rng.h"
+#include "shared/sample_stream.h"
 #include "shared/scatter.h"
 #include "shared/microfacet.h"
 #include "shared/light_pick.h"
@@ -100,6 +106,7 @@ const uint R_GLTF_SAMPLE = 17u;
 const uint R_GLTF_EVAL = 18u;
 const uint R_LIGHT_PICK = 19u;
 const uint R_SPH_TRI_LIGHT = 20u;
+const uint R_SOBOL = 21u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -221,6 +228,19 @@ void main() {
             uint li = aliasResolve(col, frac, e);
             out0 = vec4(uintBitsToFloat(li), inData[4u * (start + li)].y, 0.0, 0.0);
         }
+    }
+    if (r == R_SOBOL) {
+        uint pixel = floatBitsToUint(in0.x);
+        uint index = floatBitsToUint(in0.y);
+        uint seed = floatBitsToUint(in0.z);
+        uint group = floatBitsToUint(in0.w);
+        uint ps = sobolPixelSeed(pixel, seed);
+        for (uint k = 0u; k < 4u; ++k) out0[k] = sobolSample(ps, index, group, k);
+        out1.xy = sobolSample2(ps, index, group + 1u);
+        SampleStream st = sampleStreamInit(pixel, index, seed, (group & 1u) != 0u);
+        sampleStartVertex(st, group % 10u);
+        out1.z = sampleNext(st);
+        out1.w = sobolToFloat(ps);
     }
     outData[2u * i + 0u] = out0;
     outData[2u * i + 1u] = out1;

@@ -16,6 +16,7 @@
 #include "shared/rect_sampling.h"
 #include "shared/triangle_sampling.h"
 #include "shared/rng.h"
+#include "shared/sample_stream.h"
 #include "shared/scatter.h"
 #include "stat_suite.h"
 #include "vk/buffer.h"
@@ -198,6 +199,16 @@ Out hostSamplingKernel(Routine r, const Item& it) {
             out1 = vec4(gpu::ggxVisibility(v, l, b.alpha), gpu::ggxG1(v, b.alpha),
                         len2 > 0.0f ? gpu::ggxD(hv / std::sqrt(len2), b.alpha) : 0.0f, 0.0f);
         }
+        break;
+    }
+    case kSobol: {
+        const std::uint32_t pixel = asUint(in0.x), index = asUint(in0.y), seed = asUint(in0.z), group = asUint(in0.w);
+        const std::uint32_t ps = gpu::sobolPixelSeed(pixel, seed);
+        for (std::uint32_t k = 0; k < 4; ++k) out0[int(k)] = gpu::sobolSample(ps, index, group, k);
+        const vec2 p2 = gpu::sobolSample2(ps, index, group + 1u);
+        gpu::SampleStream st = gpu::sampleStreamInit(pixel, index, seed, (group & 1u) != 0u);
+        gpu::sampleStartVertex(st, group % 10u);
+        out1 = vec4(p2.x, p2.y, gpu::sampleNext(st), gpu::sobolToFloat(ps));
         break;
     }
     }

@@ -24,7 +24,7 @@ using glm::vec4;
 enum Routine : std::uint32_t {
     kRng, kOnb, kCosineHemi, kUniformSphere, kUniformHemi, kUniformCone, kUniformDisk, kUniformBall,
     kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight,
-    kGgxVndf, kGltfSample, kGltfEval, kLightPick, kSphTriLight
+    kGgxVndf, kGltfSample, kGltfEval, kLightPick, kSphTriLight, kSobol
 };
 
 /// Inputs in0..in3 of one item (binding 0: four vec4 per item).

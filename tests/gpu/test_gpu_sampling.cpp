@@ -62,6 +62,32 @@ TEST(GpuSampling, RngIsBitExact) {
     });
 }
 
+// The Sobol' sampler (sobol.h) and the sample stream (sample_stream.h): GLSL equals C++ bit for
+// bit on edge keys and 20k random (pixel, index, seed, group) keys, groups 0..63.
+TEST(GpuSampling, SobolIsBitExact) {
+    VKP_REQUIRE_DEVICE(dev);
+    std::vector<Item> items;
+    const std::uint32_t edges[] = {0u, 1u, 3u, 0x7fffffffu, 0x80000000u, 0xfffffffeu, 0xffffffffu};
+    auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t g) {
+        items.push_back(item(vec4(asFloat(a), asFloat(b), asFloat(c), asFloat(g))));
+    };
+    for (std::uint32_t a : edges)
+        for (std::uint32_t b : edges)
+            for (std::uint32_t c : edges)
+                for (std::uint32_t g : {0u, 1u, 9u}) add(a, b, c, g);
+    for (std::uint32_t pixel = 0; pixel < 16; ++pixel)
+        for (std::uint32_t s = 0; s < 64; ++s) add(pixel, s, 42u, s % 20u);
+    std::mt19937 gen(17);
+    for (int i = 0; i < kRandomItems; ++i) {
+        const auto a = static_cast<std::uint32_t>(gen()), b = static_cast<std::uint32_t>(gen() >> (gen() % 32u));
+        const auto c = static_cast<std::uint32_t>(gen());
+        add(a, b, c, static_cast<std::uint32_t>(gen() % 64u));
+    }
+    checkRoutine(dev, kSobol, "sobol", items, [](Compare& c, const Item&, const Out& d, const Out& h) {
+        for (int k = 0; k < 8; ++k) c.bitsEqual("value", d.o[k / 4][k % 4], h.o[k / 4][k % 4]);
+    });
+}
+
 TEST(GpuSampling, OnbMatchesHost) {
     VKP_REQUIRE_DEVICE(dev);
     std::vector<Item> items;

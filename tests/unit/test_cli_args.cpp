@@ -59,6 +59,11 @@ TEST(CliArgs, DefaultsAndOtherCommands) {
     EXPECT_EQ(parse({"info", "s.json"}).command, Command::Info);
 }
 
+TEST(CliArgs, Sequence) {
+    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "random"}).sequence, Sequence::Random);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "sobol"}).sequence, Sequence::Sobol);
+}
+
 TEST(CliArgs, UsageErrors) {
     EXPECT_NE(errorOf({"paint"}).find("unknown command 'paint'"), std::string::npos);
     EXPECT_NE(errorOf({"render"}).find("needs a scene file"), std::string::npos);
@@ -67,6 +72,7 @@ TEST(CliArgs, UsageErrors) {
     EXPECT_NE(errorOf({"render", "s.json", "--spp", "12x"}).find("got '12x'"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--time", "nan"}).find("--time"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--sampler", "mis2"}).find("--sampler must be"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--sequence", "halton"}).find("--sequence must be random or sobol"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--bogus"}).find("unknown option '--bogus'"), std::string::npos);
     EXPECT_NE(errorOf({"render", "a.json", "b.json"}).find("unexpected argument 'b.json'"), std::string::npos);
     EXPECT_NE(errorOf({"info", "a.json", "--spp", "3"}).find("only valid with 'vkpath render'"), std::string::npos);
