@@ -6,7 +6,8 @@
 //   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (FlatBvh::nodes, 4 texels each)
 //   binding 2 (usamplerBuffer RGBA32UI): primitives (FlatBvh::prims, 3 texels each)
 //   With -DVKP_FETCH_SSBO (a bench variant, tests/bench/bench_bvh_layout.cpp) bindings 1 and 2
-//   are read-only storage buffers of uvec4 holding the same data.
+//   are read-only storage buffers of uvec4 holding the same data. With -DVKP_BVH_WIDE binding 1
+//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse_wide.glsl.
 //   binding 3 (SSBO, written): per ray a uvec4:
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
@@ -33,6 +34,22 @@ layout(binding = 2) uniform usamplerBuffer primTexels;
 #define VKP_PRIM_TEXEL(b) texelFetch(primTexels, b)
 #endif
 
+#ifdef VKP_BVH_WIDE
+#include "shared/wide_bvh.h"
+GpuWideNode fetchWideNode(uint i) {
+    int b = int(i * GPU_WIDE_NODE_TEXELS);
+    GpuWideNode n;
+    n.loX = uintBitsToFloat(VKP_NODE_TEXEL(b));
+    n.hiX = uintBitsToFloat(VKP_NODE_TEXEL(b + 1));
+    n.loY = uintBitsToFloat(VKP_NODE_TEXEL(b + 2));
+    n.hiY = uintBitsToFloat(VKP_NODE_TEXEL(b + 3));
+    n.loZ = uintBitsToFloat(VKP_NODE_TEXEL(b + 4));
+    n.hiZ = uintBitsToFloat(VKP_NODE_TEXEL(b + 5));
+    n.index = VKP_NODE_TEXEL(b + 6);
+    n.count = VKP_NODE_TEXEL(b + 7);
+    return n;
+}
+#else
 GpuNode fetchNode(uint i) {
     int b = int(i * GPU_NODE_TEXELS);
     GpuNode n;
@@ -42,6 +59,7 @@ GpuNode fetchNode(uint i) {
     n.d = uintBitsToFloat(VKP_NODE_TEXEL(b + 3));
     return n;
 }
+#endif
 
 GpuPrim fetchPrim(uint i) {
     int b = int(i * GPU_PRIM_TEXELS);
@@ -52,7 +70,11 @@ GpuPrim fetchPrim(uint i) {
     return p;
 }
 
+#ifdef VKP_BVH_WIDE
+#include "lib/traverse_wide.glsl"
+#else
 #include "lib/traverse.glsl"
+#endif
 
 void main() {
     // Works with any dispatch shape that has at least `count` invocations (rows of workgroups).
