@@ -91,7 +91,18 @@ bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, 
             break;
         }
         bvec4 inner = bvec4(uvec4(hit) * uvec4(equal(n.count, uvec4(0u))));
+#ifdef VKP_WIDE_RECULL
+        // Bench variant: also drop inner children entered beyond the hit the leaves just found (the
+        // box test repeated with tmax = t: enter <= t * VKP_BOX_EXIT_SCALE, intersect.h).
+        inner = bvec4(uvec4(inner) * uvec4(lessThanEqual(tb, vec4(t * VKP_BOX_EXIT_SCALE))));
+#endif
+#ifdef VKP_WIDE_UNORDERED
+        // Bench variant: visit hit inner children in slot order (the keys are slot numbers), to
+        // measure what the nearest-first order buys; same sorting work.
+        vec4 key = mix(vec4(VKP_FAR), vec4(0.0, 1.0, 2.0, 3.0), inner);
+#else
         vec4 key = mix(vec4(VKP_FAR), tb, inner);
+#endif
         uvec4 child = n.index;
         VKP_SORT_PAIR(0, 1)
         VKP_SORT_PAIR(2, 3)

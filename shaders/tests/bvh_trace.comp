@@ -70,11 +70,7 @@ GpuPrim fetchPrim(uint i) {
     return p;
 }
 
-#ifdef VKP_BVH_WIDE
-#include "lib/traverse_wide.glsl"
-#else
-#include "lib/traverse.glsl"
-#endif
+#include "lib/traverse.glsl"  // lib/traverse_wide.glsl with VKP_BVH_WIDE
 
 void main() {
     // Works with any dispatch shape that has at least `count` invocations (rows of workgroups).

@@ -2,7 +2,9 @@
 // (shaders/tests/bvh_trace.comp + lib/traverse.glsl) run in one process on the same BVH and the
 // same rays, with nodes and primitives fetched from texel buffers (the kernels' layout) and from
 // storage buffers (the same source compiled with -DVKP_FETCH_SSBO), and the 4-wide node layout
-// (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers). Runs are interleaved
+// (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and two traversal
+// variants of it: children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED) and inner
+// children culled again against the hit found in the node's leaves (-DVKP_WIDE_RECULL). Runs are interleaved
 // (A B A B ...) and reported as rays/s ratios against the texel variant: a report, never a timed
 // assertion. What it asserts: every variant returns the same hits (t bit-exact, primitive, any-hit
 // answer; and pass counts for the variants of the binary layout) as the texel variant, and the texel variant matches the CPU twin on a subset of the rays,
@@ -28,6 +30,8 @@
 #include "bvh_trace.spv.h"
 #include "bvh_trace_ssbo.spv.h"
 #include "bvh_trace_wide.spv.h"
+#include "bvh_trace_wide_recull.spv.h"
+#include "bvh_trace_wide_unordered.spv.h"
 #include "gpu_env.h"
 #include "test_paths.h"
 #include "vk/buffer.h"
@@ -167,6 +171,10 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
         {"texel", std::span<const std::uint32_t>(kBvhTraceSpv, std::size(kBvhTraceSpv)), vk::DescriptorType::eUniformTexelBuffer},
         {"ssbo", std::span<const std::uint32_t>(kBvhTraceSsboSpv, std::size(kBvhTraceSsboSpv)), vk::DescriptorType::eStorageBuffer},
         {"wide4 texel", std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 unordered", std::span<const std::uint32_t>(kBvhTraceWideUnorderedSpv, std::size(kBvhTraceWideUnorderedSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 recull", std::span<const std::uint32_t>(kBvhTraceWideRecullSpv, std::size(kBvhTraceWideRecullSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true},
     };
     const FlatBvh bvh = buildFlatBvh(scene);

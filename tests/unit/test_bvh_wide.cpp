@@ -4,6 +4,7 @@
 // the same closest t (bit-exact), the same reported primitive's t and the same any-hit answer as
 // brute force, on triangles, spheres, quads, a dense mesh and axis-parallel rays.
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -89,6 +90,14 @@ TEST(BvhWide, CollapseFillsNodes) {
     EXPECT_GT(double(used) / double(tree.nodes.size()), 3.0);
     std::printf("binary nodes %zu, wide nodes %zu, slots used per wide node %.2f, depth %u -> %u\n", bvh.nodes.size(),
                 tree.nodes.size(), double(used) / double(tree.nodes.size()), bvh.stats.maxDepth, tree.maxDepth);
+}
+
+TEST(BvhWide, BuildFlatBvhFillsTheWideNodes) {
+    const FlatBvh bvh = buildFlatBvh(test::makeScene(test::randomTriangles(500, 6)));
+    const std::vector<gpu::GpuWideNode> again = buildWideNodes(bvh);
+    ASSERT_EQ(bvh.wideNodes.size(), again.size());
+    EXPECT_EQ(bvh.stats.wideNodeCount, again.size());
+    EXPECT_EQ(std::memcmp(bvh.wideNodes.data(), again.data(), again.size() * sizeof(gpu::GpuWideNode)), 0);
 }
 
 TEST(BvhWide, MalformedFlatBvhIsRejected) {
