@@ -4,7 +4,8 @@
 // The includer defines, BEFORE including this file (it declares no bindings):
 //   GpuWideNode fetchWideNode(uint i);   // node i (8 texels)
 //   GpuPrim fetchPrim(uint i);           // primitive i (3 texels)
-// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false and VKP_MAX_PASSES, as for
+// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false, VKP_MAX_PASSES and
+// VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit), as for
 // lib/traverse.glsl, whose interface (traceClosest, traceAny) and loop guard this file repeats:
 // include one of the two.
 //
@@ -77,7 +78,11 @@ bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, 
                    : (i < s3) ? n.index.z + (i - s2)
                               : n.index.w + (i - s3);
             vec2 ab;
-            float th = intersectPrim(fetchPrim(p), o, d, tmin, t, ab);
+            GpuPrim pr = fetchPrim(p);
+            float th = intersectPrim(pr, o, d, tmin, t, ab);
+#ifdef VKP_ANY_HIT
+            if (th < t && !VKP_ANY_HIT(p, pr, ab, o, d)) th = VKP_FAR;  // a rejected candidate (as in lib/traverse.glsl on main: alpha)
+#endif
             if (th < t) {
                 t = th;
                 primIndex = p;
