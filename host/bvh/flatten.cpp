@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bvh/wide_pack.h"
 #include "core/errors.h"
 
 namespace vkp {
@@ -182,6 +183,10 @@ FlatBvh buildFlatBvh(const Scene& scene, const BvhBuildOptions& options) {
     const double buildMs = msSince(t0);
     FlatBvh flat = flattenBvh(tree, scene);
     flat.stats.buildMs = buildMs;
+    const auto t1 = std::chrono::steady_clock::now();
+    flat.wideNodes = buildWideNodes(flat);
+    flat.stats.wideMs = msSince(t1);
+    flat.stats.wideNodeCount = flat.wideNodes.size();
     return flat;
 }
 

@@ -8,6 +8,7 @@
 #include "bvh/build.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
+#include "shared/wide_bvh.h"
 
 namespace vkp {
 
@@ -22,6 +23,8 @@ struct BvhStats {
     double sahCost = 0.0;
     double buildMs = 0.0;    ///< wall time of buildBvh (milliseconds)
     double flattenMs = 0.0;  ///< wall time of flattening and packing (milliseconds)
+    double wideMs = 0.0;     ///< wall time of the 4-wide collapse and packing (milliseconds)
+    std::size_t wideNodeCount = 0;  ///< GpuWideNodes of FlatBvh::wideNodes
 };
 
 /// A BVH in the GPU layout. nodes[0] is the root; inner children come after their parent
@@ -32,6 +35,9 @@ struct FlatBvh {
     std::vector<gpu::GpuNode> nodes;
     std::vector<gpu::GpuPrim> prims;
     std::vector<std::uint32_t> primToShape;
+    /// The same tree collapsed to 4-wide nodes (shared/wide_bvh.h, host/bvh/wide_pack.h) over the
+    /// same prims: what the kernels traverse. Filled by buildFlatBvh (empty after flattenBvh alone).
+    std::vector<gpu::GpuWideNode> wideNodes;
     BvhStats stats;
 };
 
@@ -45,7 +51,8 @@ gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne);
 /// that is not a shape; std::invalid_argument when the tree does not match the shapes.
 FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene);
 
-/// Build (binned SAH, buildBvh) and flatten the scene's shapes; fills stats including times.
+/// Build (binned SAH, buildBvh), flatten the scene's shapes and collapse the result to 4-wide
+/// nodes (wideNodes); fills stats including times.
 /// Throws InputError (one line, naming scene.path and the shape) on non-finite shape data.
 FlatBvh buildFlatBvh(const Scene& scene, const BvhBuildOptions& options = {});
 

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "bvh/flatten.h"
+#include "bvh/wide_pack.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
 #include "render/environment.h"
@@ -90,7 +91,11 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       adaptiveMinSpp_(options.adaptiveMinSpp) {
     features_.sequence = options.sequence;
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
-    if (bvh.nodes.size() * gpu::GPU_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
+    // The kernel traverses the 4-wide layout (lib/traverse.glsl): FlatBvh::wideNodes, or collapsed here
+    // for a FlatBvh that came from flattenBvh alone.
+    const std::vector<gpu::GpuWideNode> collapsed = bvh.wideNodes.empty() ? buildWideNodes(bvh) : std::vector<gpu::GpuWideNode>{};
+    const std::vector<gpu::GpuWideNode>& wideNodes = bvh.wideNodes.empty() ? collapsed : bvh.wideNodes;
+    if (wideNodes.size() * gpu::GPU_WIDE_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
         throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
                           " primitives need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
     const EnvTables env = packEnvironment(scene);
@@ -124,7 +129,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     }
     impl_->frame = std::make_unique<GpuBuffer>(device, sizeof(frame), vk::BufferUsageFlagBits::eUniformBuffer);
     impl_->frame->upload(&frame, sizeof(frame));
-    impl_->nodes = uploadTexels(device, bvh.nodes);
+    impl_->nodes = uploadTexels(device, wideNodes);
     impl_->prims = uploadTexels(device, bvh.prims);
     impl_->materials = uploadTexels(device, materialTexels);
     impl_->lights = uploadTexels(device, packLights(scene, primOfShape));

@@ -27,6 +27,33 @@
 #ifndef VKP_TRAVERSE_GLSL
 #define VKP_TRAVERSE_GLSL
 
+// Node layout. The path-tracing kernels (lib/bindings.glsl, node texels in uNodes) traverse the
+// 4-wide layout (shared/wide_bvh.h, lib/traverse_wide.glsl; the host uploads FlatBvh::wideNodes),
+// which measured faster on lavapipe (README "Performance", "Device data layout"). Any includer may
+// choose it by defining VKP_BVH_WIDE and fetchWideNode, or keep this binary traversal by defining
+// VKP_BVH_BINARY (or by not including lib/bindings.glsl).
+#if defined(VKP_BINDINGS_GLSL) && !defined(VKP_BVH_BINARY) && !defined(VKP_BVH_WIDE)
+#define VKP_BVH_WIDE 1
+#include "shared/wide_bvh.h"
+GpuWideNode fetchWideNode(uint i) {
+    int b = int(i * GPU_WIDE_NODE_TEXELS);
+    GpuWideNode n;
+    n.loX = uintBitsToFloat(texelFetch(uNodes, b));
+    n.hiX = uintBitsToFloat(texelFetch(uNodes, b + 1));
+    n.loY = uintBitsToFloat(texelFetch(uNodes, b + 2));
+    n.hiY = uintBitsToFloat(texelFetch(uNodes, b + 3));
+    n.loZ = uintBitsToFloat(texelFetch(uNodes, b + 4));
+    n.hiZ = uintBitsToFloat(texelFetch(uNodes, b + 5));
+    n.index = texelFetch(uNodes, b + 6);
+    n.count = texelFetch(uNodes, b + 7);
+    return n;
+}
+#endif
+
+#ifdef VKP_BVH_WIDE
+#include "lib/traverse_wide.glsl"
+#else
+
 #include "shared/intersect.h"
 
 #ifndef VKP_MAX_PASSES
@@ -128,4 +155,5 @@ bool traceAny(vec3 o, vec3 d, float tmin, float tmax, inout uint passes) {
     return vkpTraverse(true, o, d, tmin, tmax, primIndex, t, ab, passes);
 }
 
+#endif  // VKP_BVH_WIDE
 #endif

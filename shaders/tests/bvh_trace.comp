@@ -5,6 +5,9 @@
 //                            x + y * (groups in x * 64) traces ray number that (extra ones idle)
 //   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (FlatBvh::nodes, 4 texels each)
 //   binding 2 (usamplerBuffer RGBA32UI): primitives (FlatBvh::prims, 3 texels each)
+//   With -DVKP_FETCH_SSBO (a bench variant, tests/bench/bench_bvh_layout.cpp) bindings 1 and 2
+//   are read-only storage buffers of uvec4 holding the same data. With -DVKP_BVH_WIDE binding 1
+//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse_wide.glsl.
 //   binding 3 (SSBO, written): per ray a uvec4:
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
@@ -17,30 +20,57 @@ layout(local_size_x = 64) in;
 #include "shared/gpu_types.h"
 
 layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; };
-layout(binding = 1) uniform usamplerBuffer nodeTexels;
-layout(binding = 2) uniform usamplerBuffer primTexels;
 layout(std430, binding = 3) writeonly buffer Results { uvec4 results[]; };
 
+#ifdef VKP_FETCH_SSBO
+layout(std430, binding = 1) readonly buffer NodeData { uvec4 nodeData[]; };
+layout(std430, binding = 2) readonly buffer PrimData { uvec4 primData[]; };
+#define VKP_NODE_TEXEL(b) nodeData[b]
+#define VKP_PRIM_TEXEL(b) primData[b]
+#else
+layout(binding = 1) uniform usamplerBuffer nodeTexels;
+layout(binding = 2) uniform usamplerBuffer primTexels;
+#define VKP_NODE_TEXEL(b) texelFetch(nodeTexels, b)
+#define VKP_PRIM_TEXEL(b) texelFetch(primTexels, b)
+#endif
+
+#ifdef VKP_BVH_WIDE
+#include "shared/wide_bvh.h"
+GpuWideNode fetchWideNode(uint i) {
+    int b = int(i * GPU_WIDE_NODE_TEXELS);
+    GpuWideNode n;
+    n.loX = uintBitsToFloat(VKP_NODE_TEXEL(b));
+    n.hiX = uintBitsToFloat(VKP_NODE_TEXEL(b + 1));
+    n.loY = uintBitsToFloat(VKP_NODE_TEXEL(b + 2));
+    n.hiY = uintBitsToFloat(VKP_NODE_TEXEL(b + 3));
+    n.loZ = uintBitsToFloat(VKP_NODE_TEXEL(b + 4));
+    n.hiZ = uintBitsToFloat(VKP_NODE_TEXEL(b + 5));
+    n.index = VKP_NODE_TEXEL(b + 6);
+    n.count = VKP_NODE_TEXEL(b + 7);
+    return n;
+}
+#else
 GpuNode fetchNode(uint i) {
     int b = int(i * GPU_NODE_TEXELS);
     GpuNode n;
-    n.a = uintBitsToFloat(texelFetch(nodeTexels, b));
-    n.b = uintBitsToFloat(texelFetch(nodeTexels, b + 1));
-    n.c = uintBitsToFloat(texelFetch(nodeTexels, b + 2));
-    n.d = uintBitsToFloat(texelFetch(nodeTexels, b + 3));
+    n.a = uintBitsToFloat(VKP_NODE_TEXEL(b));
+    n.b = uintBitsToFloat(VKP_NODE_TEXEL(b + 1));
+    n.c = uintBitsToFloat(VKP_NODE_TEXEL(b + 2));
+    n.d = uintBitsToFloat(VKP_NODE_TEXEL(b + 3));
     return n;
 }
+#endif
 
 GpuPrim fetchPrim(uint i) {
     int b = int(i * GPU_PRIM_TEXELS);
     GpuPrim p;
-    p.p0 = uintBitsToFloat(texelFetch(primTexels, b));
-    p.p1 = uintBitsToFloat(texelFetch(primTexels, b + 1));
-    p.p2 = uintBitsToFloat(texelFetch(primTexels, b + 2));
+    p.p0 = uintBitsToFloat(VKP_PRIM_TEXEL(b));
+    p.p1 = uintBitsToFloat(VKP_PRIM_TEXEL(b + 1));
+    p.p2 = uintBitsToFloat(VKP_PRIM_TEXEL(b + 2));
     return p;
 }
 
-#include "lib/traverse.glsl"
+#include "lib/traverse.glsl"  // lib/traverse_wide.glsl with VKP_BVH_WIDE
 
 void main() {
     // Works with any dispatch shape that has at least `count` invocations (rows of workgroups).

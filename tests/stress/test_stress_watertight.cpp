@@ -7,7 +7,8 @@
 //  - The traversal (host/bvh CPU twin, through the packed GpuPrim and the BVH) on the 100k-triangle
 //    sphere mesh of the BVH tests, 1M rays; and the same on the device (shaders/tests/bvh_trace.comp,
 //    lavapipe), spot-checked bit for bit against the CPU: 0 escapes (GpuPrim keeps triangle
-//    vertices, so shared vertices stay bit-identical through the packing).
+//    vertices, so shared vertices stay bit-identical through the packing). The same for the
+//    4-wide layout (shared/wide_bvh.h), on the CPU and on the device.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,8 +17,11 @@
 
 #include "bvh/flatten.h"
 #include "bvh/traverse_cpu.h"
+#include "bvh/traverse_wide_cpu.h"
+#include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"
 #include "bvh_trace.spv.h"
+#include "bvh_trace_wide.spv.h"
 #include "gpu_env.h"
 #include "shared/intersect.h"
 #include "vk/buffer.h"
@@ -205,8 +209,11 @@ TEST(StressWatertight, CpuTraversalNeverLetsARayOutOfTheSphereMesh) {
     EXPECT_EQ(cut, 0);
 }
 
-TEST(StressWatertight, DeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
-    VKP_REQUIRE_DEVICE(dev);
+/// Runs the rays through bvh_trace.comp (or a variant of it: spirv) on the device with node data
+/// `nodes` (nodeBytes bytes), counts escapes, spot-checks every 97th ray against `cpu` (t, prim).
+template <class CpuTrace>
+void checkDeviceEscapes(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodes, std::size_t nodeBytes,
+                        CpuTrace cpu, const char* who) {
     const MeshRays& mr = meshRays();
     std::vector<glm::vec4> rayData;
     for (const Ray& r : mr.rays) {
@@ -217,13 +224,13 @@ TEST(StressWatertight, DeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
     const auto texel = vk::BufferUsageFlagBits::eUniformTexelBuffer;
     GpuBuffer rayBuf(dev, rayData.size() * sizeof(glm::vec4), storage);
     rayBuf.upload(rayData.data(), rayData.size() * sizeof(glm::vec4));
-    GpuBuffer nodeBuf(dev, mr.bvh.nodes.size() * sizeof(gpu::GpuNode), texel);
-    nodeBuf.upload(mr.bvh.nodes.data(), mr.bvh.nodes.size() * sizeof(gpu::GpuNode));
+    GpuBuffer nodeBuf(dev, nodeBytes, texel);
+    nodeBuf.upload(nodes, nodeBytes);
     GpuBuffer primBuf(dev, mr.bvh.prims.size() * sizeof(gpu::GpuPrim), texel);
     primBuf.upload(mr.bvh.prims.data(), mr.bvh.prims.size() * sizeof(gpu::GpuPrim));
     GpuBuffer outBuf(dev, mr.rays.size() * sizeof(glm::uvec4), storage);
     ComputePipelineDesc desc;
-    desc.spirv = std::span<const std::uint32_t>(kBvhTraceSpv, sizeof(kBvhTraceSpv) / sizeof(kBvhTraceSpv[0]));
+    desc.spirv = spirv;
     desc.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer};
     ComputePipeline pipe(dev, desc);
@@ -245,14 +252,50 @@ TEST(StressWatertight, DeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
     for (std::size_t i = 0; i < out.size(); ++i) {
         if (out[i].y == gpu::GPU_NODE_EMPTY) escaped.push_back(i);
         if (i % 97 == 0) {  // spot-check against the CPU twin
-            const TraceResult h = traceClosestCpu(mr.bvh, mr.rays[i].o, mr.rays[i].d, 0.0f, gpu::VKP_FAR);
+            const TraceResult h = cpu(mr.rays[i]);
             float t;
             std::memcpy(&t, &out[i].x, sizeof t);
             mismatches += (std::memcmp(&t, &h.t, sizeof t) != 0 || out[i].y != h.prim);
         }
     }
-    checkEscapes(mr, escaped, "device traversal");
+    checkEscapes(mr, escaped, who);
     EXPECT_EQ(mismatches, 0);
+}
+
+TEST(StressWatertight, DeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
+    VKP_REQUIRE_DEVICE(dev);
+    const MeshRays& mr = meshRays();
+    checkDeviceEscapes(
+        dev, std::span<const std::uint32_t>(kBvhTraceSpv, std::size(kBvhTraceSpv)), mr.bvh.nodes.data(),
+        mr.bvh.nodes.size() * sizeof(gpu::GpuNode),
+        [&](const Ray& r) { return traceClosestCpu(mr.bvh, r.o, r.d, 0.0f, gpu::VKP_FAR); }, "device traversal");
+}
+
+/// The 4-wide layout (shared/wide_bvh.h) on the same mesh and rays: CPU twin and device.
+TEST(StressWatertight, WideCpuTraversalNeverLetsARayOutOfTheSphereMesh) {
+    const MeshRays& mr = meshRays();
+    const std::vector<gpu::GpuWideNode> wide = buildWideNodes(mr.bvh);
+    std::vector<std::size_t> escaped;
+    long cut = 0;
+    for (std::size_t i = 0; i < mr.rays.size(); ++i) {
+        const Ray& r = mr.rays[i];
+        const TraceResult h = traceClosestWideCpu(wide, mr.bvh.prims, r.o, r.d, r.tmin, r.tmax);
+        if (!h.hit) escaped.push_back(i);
+        cut += h.cutShort();
+    }
+    checkEscapes(mr, escaped, "wide CPU traversal");
+    EXPECT_EQ(cut, 0);
+}
+
+TEST(StressWatertight, WideDeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
+    VKP_REQUIRE_DEVICE(dev);
+    const MeshRays& mr = meshRays();
+    const std::vector<gpu::GpuWideNode> wide = buildWideNodes(mr.bvh);
+    checkDeviceEscapes(
+        dev, std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)), wide.data(),
+        wide.size() * sizeof(gpu::GpuWideNode),
+        [&](const Ray& r) { return traceClosestWideCpu(wide, mr.bvh.prims, r.o, r.d, 0.0f, gpu::VKP_FAR); },
+        "wide device traversal");
 }
 
 }  // namespace

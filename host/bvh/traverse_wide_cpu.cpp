@@ -1,0 +1,130 @@
+// CPU twin of shaders/lib/traverse_wide.glsl (vkpTraverseWide): keep the two in step.
+#include "bvh/traverse_wide_cpu.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "shared/intersect.h"
+
+namespace vkp {
+namespace {
+
+using namespace vkp::gpu;
+
+template <class T>
+const T& at(std::span<const T> a, std::uint32_t i, const char* what) {
+    if (i >= a.size())
+        throw std::out_of_range(std::string("wide BVH traversal: ") + what + " index " + std::to_string(i) +
+                                " out of range (" + std::to_string(a.size()) + ")");
+    return a[i];
+}
+
+/// Compare-and-swap of the sorting network: after it, key[i] <= key[j] (swaps only on key[j] < key[i]).
+void sortPair(float* key, uint* child, int i, int j) {
+    if (key[j] < key[i]) {
+        std::swap(key[i], key[j]);
+        std::swap(child[i], child[j]);
+    }
+}
+
+template <bool kAnyHit>
+TraceResult traverse(std::span<const GpuWideNode> nodes, std::span<const GpuPrim> prims, const vec3& o,
+                     const vec3& d, float tmin, float tmax, std::uint32_t passes, std::uint32_t maxPasses) {
+    TraceResult r;
+    r.passes = passes;
+    r.maxPasses = maxPasses;
+    const bool nanRay = glm::any(glm::isnan(o)) || glm::any(glm::isnan(d));
+    if (nanRay || !(tmin < tmax)) return r;
+    float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
+    const vec3 invD = safeInverse(d);
+    std::uint32_t stack[kWideTraceStackSize];
+    std::uint32_t sp = 0;
+    std::uint32_t node = 0;
+    bool finished = false;
+    bool overflow = false;
+    bool found = false;
+    while (passes < maxPasses) {
+        passes += 2u;
+        const GpuWideNode& n = at(nodes, node, "node");
+        float tb[4];
+        uint nLeaf[4];
+        for (int k = 0; k < 4; ++k) {
+            tb[k] = intersectBox(vec3(n.loX[k], n.loY[k], n.loZ[k]), vec3(n.hiX[k], n.hiY[k], n.hiZ[k]), o, invD, tmin, t);
+            nLeaf[k] = (tb[k] < VKP_FAR) ? n.count[k] : 0u;
+        }
+        const uint s1 = nLeaf[0], s2 = s1 + nLeaf[1], s3 = s2 + nLeaf[2], total = s3 + nLeaf[3];
+        for (uint i = 0u; i < total; ++i) {
+            passes += 1u;
+            const uint p = (i < s1) ? n.index[0] + i
+                           : (i < s2) ? n.index[1] + (i - s1)
+                           : (i < s3) ? n.index[2] + (i - s2)
+                                      : n.index[3] + (i - s3);
+            vec2 ab;
+            const float th = intersectPrim(at(prims, p, "primitive"), o, d, tmin, t, ab);
+            if (th < t) {
+                t = th;
+                r.prim = p;
+                r.ab = ab;
+                found = true;
+                if (kAnyHit) break;
+            }
+        }
+        if (kAnyHit && found) {
+            finished = true;
+            break;
+        }
+        float key[4];
+        uint child[4];
+        for (int k = 0; k < 4; ++k) {
+            key[k] = (tb[k] < VKP_FAR && n.count[k] == 0u) ? tb[k] : VKP_FAR;
+            child[k] = n.index[k];
+        }
+        sortPair(key, child, 0, 1);
+        sortPair(key, child, 2, 3);
+        sortPair(key, child, 0, 2);
+        sortPair(key, child, 1, 3);
+        sortPair(key, child, 1, 2);
+        for (int k = 3; k >= 1; --k) {
+            if (key[k] < VKP_FAR) {
+                if (sp < kWideTraceStackSize) {
+                    stack[sp] = child[k];
+                    ++sp;
+                } else {
+                    overflow = true;
+                }
+            }
+        }
+        if (key[0] < VKP_FAR) {
+            node = child[0];
+        } else if (sp > 0u) {
+            --sp;
+            node = stack[sp];
+        } else {
+            finished = true;
+            break;
+        }
+    }
+    if (!finished || overflow) passes = std::max(passes, maxPasses);
+    r.passes = passes;
+    r.hit = found;
+    r.t = found ? t : VKP_FAR;
+    return r;
+}
+
+}  // namespace
+
+TraceResult traceClosestWideCpu(std::span<const GpuWideNode> nodes, std::span<const GpuPrim> prims,
+                                const glm::vec3& o, const glm::vec3& d, float tmin, float tmax,
+                                std::uint32_t passes, std::uint32_t maxPasses) {
+    return traverse<false>(nodes, prims, o, d, tmin, tmax, passes, maxPasses);
+}
+
+TraceResult traceAnyWideCpu(std::span<const GpuWideNode> nodes, std::span<const GpuPrim> prims,
+                            const glm::vec3& o, const glm::vec3& d, float tmin, float tmax,
+                            std::uint32_t passes, std::uint32_t maxPasses) {
+    return traverse<true>(nodes, prims, o, d, tmin, tmax, passes, maxPasses);
+}
+
+}  // namespace vkp

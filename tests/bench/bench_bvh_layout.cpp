@@ -1,0 +1,268 @@
+// Micro-benchmark of the device data layout (issue 3): the BVH traversal kernel
+// (shaders/tests/bvh_trace.comp + lib/traverse.glsl) run in one process on the same BVH and the
+// same rays, with nodes and primitives fetched from texel buffers (the kernels' layout) and from
+// storage buffers (the same source compiled with -DVKP_FETCH_SSBO), and the 4-wide node layout
+// (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and two traversal
+// variants of it: children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED) and inner
+// children culled again against the hit found in the node's leaves (-DVKP_WIDE_RECULL). Runs are interleaved
+// (A B A B ...) and reported as rays/s ratios against the texel variant: a report, never a timed
+// assertion. What it asserts: every variant returns the same hits (t bit-exact, primitive, any-hit
+// answer; and pass counts for the variants of the binary layout) as the texel variant, and the texel variant matches the CPU twin on a subset of the rays,
+// so a broken variant cannot be timed silently.
+//
+// Scenes: cornell-classic, and cornell-classic with a 1M-triangle sphere mesh in its middle.
+// Rays: incoherent, like path-tracing bounces: origins uniform in the scene's box, directions
+// uniform on the sphere; each ray is traced closest-hit and any-hit (2 rays per ray slot).
+// Environment: VKP_BENCH_RAYS (ray slots, default 131072), VKP_BENCH_ROUNDS (default 5).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sys/resource.h>
+
+#include "bvh/flatten.h"
+#include "bvh/traverse_cpu.h"
+#include "bvh/wide_pack.h"
+#include "bvh_test_scenes.h"
+#include "bvh_trace.spv.h"
+#include "bvh_trace_ssbo.spv.h"
+#include "bvh_trace_wide.spv.h"
+#include "bvh_trace_wide_recull.spv.h"
+#include "bvh_trace_wide_unordered.spv.h"
+#include "gpu_env.h"
+#include "test_paths.h"
+#include "vk/buffer.h"
+#include "vk/compute_pipeline.h"
+
+namespace vkp::test {
+namespace {
+
+std::size_t envCount(const char* name, std::size_t fallback) {
+    const char* v = std::getenv(name);
+    return v ? std::size_t(std::strtoull(v, nullptr, 10)) : fallback;
+}
+
+/// Process CPU time (user + system, every thread: lavapipe's workers run in this process).
+double cpuSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Variant {
+    const char* name;
+    std::span<const std::uint32_t> spirv;
+    vk::DescriptorType dataType;  ///< descriptor type of bindings 1 and 2
+    bool wide = false;            ///< nodes in the 4-wide layout (GpuWideNode)
+};
+
+/// Buffers of one scene, bound to one pipeline per variant.
+struct LayoutBench {
+    VulkanDevice& dev;
+    std::size_t rayCount;
+    GpuBuffer rays, nodes, wideNodes, prims, out;
+    vk::raii::BufferView nodeView{nullptr}, wideView{nullptr}, primView{nullptr};
+    std::vector<std::unique_ptr<ComputePipeline>> pipes;
+
+    LayoutBench(VulkanDevice& d, const FlatBvh& bvh, const std::vector<gpu::GpuWideNode>& wide, const std::vector<Ray>& rs,
+                const std::vector<Variant>& variants)
+        : dev(d), rayCount(rs.size()), rays(d, rs.size() * 32, vk::BufferUsageFlagBits::eStorageBuffer),
+          nodes(d, bvh.nodes.size() * sizeof(gpu::GpuNode), usage()),
+          wideNodes(d, wide.size() * sizeof(gpu::GpuWideNode), usage()),
+          prims(d, bvh.prims.size() * sizeof(gpu::GpuPrim), usage()),
+          out(d, rs.size() * sizeof(glm::uvec4), vk::BufferUsageFlagBits::eStorageBuffer) {
+        std::vector<glm::vec4> data;
+        for (const Ray& r : rs) {
+            data.emplace_back(r.o, r.tmin);
+            data.emplace_back(r.d, r.tmax);
+        }
+        rays.upload(data.data(), data.size() * sizeof(glm::vec4));
+        nodes.upload(bvh.nodes.data(), bvh.nodes.size() * sizeof(gpu::GpuNode));
+        prims.upload(bvh.prims.data(), bvh.prims.size() * sizeof(gpu::GpuPrim));
+        wideNodes.upload(wide.data(), wide.size() * sizeof(gpu::GpuWideNode));
+        nodeView = nodes.texelView();
+        wideView = wideNodes.texelView();
+        primView = prims.texelView();
+        for (const Variant& v : variants) {
+            ComputePipelineDesc desc;
+            desc.spirv = v.spirv;
+            desc.bindings = {vk::DescriptorType::eStorageBuffer, v.dataType, v.dataType, vk::DescriptorType::eStorageBuffer};
+            auto p = std::make_unique<ComputePipeline>(dev, desc);
+            p->bindBuffer(0, rays.buffer());
+            if (v.dataType == vk::DescriptorType::eUniformTexelBuffer) {
+                p->bindTexelView(1, v.wide ? *wideView : *nodeView);
+                p->bindTexelView(2, *primView);
+            } else {
+                p->bindBuffer(1, v.wide ? wideNodes.buffer() : nodes.buffer());
+                p->bindBuffer(2, prims.buffer());
+            }
+            p->bindBuffer(3, out.buffer());
+            pipes.push_back(std::move(p));
+        }
+    }
+    static vk::BufferUsageFlags usage() {
+        return vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eStorageBuffer;
+    }
+    /// Runs variant v once; returns {wall seconds, CPU seconds} and the results in `res`.
+    std::pair<double, double> run(std::size_t v, std::vector<glm::uvec4>& res) {
+        const auto groups = std::uint32_t((rayCount + 63) / 64);
+        const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpuSeconds();
+        dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipes[v]->recordDispatch(cmd, groups, 1, nullptr, 0); });
+        const double c1 = cpuSeconds();
+        const auto t1 = std::chrono::steady_clock::now();
+        res.resize(rayCount);
+        out.download(res.data(), res.size() * sizeof(glm::uvec4));
+        return {std::chrono::duration<double>(t1 - t0).count(), c1 - c0};
+    }
+};
+
+/// The box around every shape of the scene.
+std::pair<glm::vec3, glm::vec3> sceneBounds(const Scene& scene) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    auto add = [&](const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    };
+    for (const Shape& s : scene.shapes) {
+        if (s.type == ShapeType::Sphere) {
+            add(s.p0 - glm::vec3(s.radius));
+            add(s.p0 + glm::vec3(s.radius));
+        } else if (s.type == ShapeType::Quad) {
+            add(s.p0), add(s.p0 + s.p1), add(s.p0 + s.p2), add(s.p0 + s.p1 + s.p2);
+        } else {
+            add(s.p0), add(s.p1), add(s.p2);
+        }
+    }
+    return {lo, hi};
+}
+
+std::vector<Ray> incoherentRays(const Scene& scene, std::size_t n, std::uint32_t seed) {
+    const auto [lo, hi] = sceneBounds(scene);
+    const glm::vec3 pad = 0.01f * (hi - lo);
+    Rng rng(seed);
+    std::vector<Ray> rays;
+    rays.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+        rays.push_back({rng.inBox(lo + pad, hi - pad), rng.direction(), 1e-4f * glm::length(hi - lo), gpu::VKP_FAR});
+    return rays;
+}
+
+/// True when primitive `prim` is hit by ray r at exactly the distance whose bits are tBits.
+bool primGivesT(const FlatBvh& bvh, const Ray& r, std::uint32_t prim, std::uint32_t tBits) {
+    if (prim >= bvh.prims.size()) return false;
+    glm::vec2 ab;
+    const float t = gpu::intersectPrim(bvh.prims[prim], r.o, r.d, r.tmin, std::min(r.tmax, gpu::VKP_FAR), ab);
+    std::uint32_t bits;
+    std::memcpy(&bits, &t, sizeof bits);
+    return bits == tBits;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
+    const std::vector<Variant> variants = {
+        {"texel", std::span<const std::uint32_t>(kBvhTraceSpv, std::size(kBvhTraceSpv)), vk::DescriptorType::eUniformTexelBuffer},
+        {"ssbo", std::span<const std::uint32_t>(kBvhTraceSsboSpv, std::size(kBvhTraceSsboSpv)), vk::DescriptorType::eStorageBuffer},
+        {"wide4 texel", std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 unordered", std::span<const std::uint32_t>(kBvhTraceWideUnorderedSpv, std::size(kBvhTraceWideUnorderedSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 recull", std::span<const std::uint32_t>(kBvhTraceWideRecullSpv, std::size(kBvhTraceWideRecullSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+    };
+    const FlatBvh bvh = buildFlatBvh(scene);
+    const std::vector<gpu::GpuWideNode> wide = buildWideNodes(bvh);
+    const std::vector<Ray> rays = incoherentRays(scene, envCount("VKP_BENCH_RAYS", 131072), 17);
+    LayoutBench bench(dev, bvh, wide, rays, variants);
+
+    // Correctness first: the reference variant against the CPU twin on a subset, then every
+    // variant against the reference on every ray.
+    std::vector<glm::uvec4> ref, res;
+    bench.run(0, ref);
+    int cpuMismatches = 0, hits = 0;
+    for (std::size_t i = 0; i < std::min<std::size_t>(rays.size(), 4000); ++i) {
+        const Ray& r = rays[i];
+        const TraceResult c = traceClosestCpu(bvh, r.o, r.d, r.tmin, r.tmax);
+        const TraceResult a = traceAnyCpu(bvh, r.o, r.d, r.tmin, r.tmax);
+        hits += c.hit;
+        float t;
+        std::memcpy(&t, &ref[i].x, sizeof t);
+        if (std::memcmp(&t, &c.t, sizeof t) != 0 || ref[i].y != c.prim || bool(ref[i].w & 1u) != a.hit) ++cpuMismatches;
+    }
+    EXPECT_EQ(cpuMismatches, 0) << label << ": texel variant against the CPU twin";
+    EXPECT_GT(hits, 1000) << label << ": the rays must hit something";
+    for (std::size_t v = 1; v < variants.size(); ++v) {
+        bench.run(v, res);
+        int mismatches = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            // Same node layout: everything equal (t, primitive, any-hit, pass counts). Other layout:
+            // t and any-hit equal; the primitive may differ only in a tie (coplanar quads, e.g. a box
+            // standing on the floor), so it must give the same t.
+            const bool same = variants[v].wide ? res[i].x == ref[i].x && (res[i].w & 1u) == (ref[i].w & 1u) &&
+                                                     (res[i].y == ref[i].y || primGivesT(bvh, rays[i], res[i].y, res[i].x))
+                                               : res[i] == ref[i];
+            mismatches += !same;
+            if (!same && mismatches <= 3)
+                std::printf("  ray %zu: ref t %08x prim %u any %u | %s t %08x prim %u any %u\n", i, ref[i].x, ref[i].y,
+                            ref[i].w & 1u, variants[v].name, res[i].x, res[i].y, res[i].w & 1u);
+        }
+        EXPECT_EQ(mismatches, 0) << label << ": variant " << variants[v].name << " differs from texel";
+    }
+    dev.instance().throwIfValidationMessages("in the BVH layout bench");
+
+    // Interleaved timing rounds.
+    const std::size_t rounds = std::max<std::size_t>(1, envCount("VKP_BENCH_ROUNDS", 5));
+    std::vector<std::vector<double>> wall(variants.size()), cpu(variants.size()), ratio(variants.size());
+    for (std::size_t r = 0; r < rounds; ++r) {
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+            const auto [w, c] = bench.run(v, res);
+            wall[v].push_back(w);
+            cpu[v].push_back(c);
+        }
+        for (std::size_t v = 0; v < variants.size(); ++v) ratio[v].push_back(cpu[0].back() / cpu[v].back());
+    }
+    const double raysPerRun = 2.0 * double(rays.size());
+    std::printf("\n%s: %zu prims, %zu binary nodes, %zu wide nodes, %zu ray slots (closest + any), %zu interleaved rounds\n", label,
+                bvh.prims.size(), bvh.nodes.size(), wide.size(), rays.size(), rounds);
+    std::printf("| variant | Mrays/s (wall, median) | Mrays/CPU-s (median) | CPU-time speed vs texel: median [min, max] |\n");
+    std::printf("|---|---|---|---|\n");
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+        const auto [lo, hi] = std::minmax_element(ratio[v].begin(), ratio[v].end());
+        std::printf("| %s | %.3f | %.3f | %.3f [%.3f, %.3f] |\n", variants[v].name, raysPerRun / median(wall[v]) * 1e-6,
+                    raysPerRun / median(cpu[v]) * 1e-6, median(ratio[v]), *lo, *hi);
+    }
+    std::fflush(stdout);
+}
+
+Scene cornellClassic() { return loadSceneJson(scenesDir() / "cornell-classic.json"); }
+
+TEST(BenchBvhLayout, CornellClassic) {
+    VKP_REQUIRE_DEVICE(dev);
+    benchScene(dev, "cornell-classic", cornellClassic());
+}
+
+TEST(BenchBvhLayout, CornellWithMillionTriangleMesh) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = cornellClassic();
+    const auto [lo, hi] = sceneBounds(scene);
+    const glm::vec3 center = 0.5f * (lo + hi);
+    const float radius = 0.2f * glm::length(hi - lo);
+    for (Shape s : sphereMesh(708, 708, radius)) {
+        s.p0 += center;
+        s.p1 += center;
+        s.p2 += center;
+        scene.shapes.push_back(s);
+    }
+    ASSERT_GE(scene.shapes.size(), 1000000u);
+    benchScene(dev, "cornell-classic + 1M-triangle mesh", scene);
+}
+
+}  // namespace
+}  // namespace vkp::test
