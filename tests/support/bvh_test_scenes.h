@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <limits>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -164,6 +165,47 @@ inline std::vector<Ray> randomRays(const std::vector<Shape>& shapes, std::size_t
         }
         rays.push_back(r);
     }
+    return rays;
+}
+
+/// Quads in the three axis planes on integer coordinates of [0,4]^3 (a grid whose planes many
+/// axis-parallel rays lie in exactly): the stress case of the slab test.
+inline std::vector<Shape> axisQuadGrid() {
+    std::vector<Shape> grid;  // quads in the three axis planes, on integer coordinates
+    for (int i = 0; i <= 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 4; ++k) {
+                const float a = float(i), b = float(j), cc = float(k);
+                if ((i + j + k) % 2 == 0) grid.push_back(quad({a, b, cc}, {0, 1, 0}, {0, 0, 1}));
+                if ((i + j + k) % 3 == 0) grid.push_back(quad({b, a, cc}, {0, 0, 1}, {1, 0, 0}));
+                if ((i + j + k) % 2 == 1) grid.push_back(quad({b, cc, a}, {1, 0, 0}, {0, 1, 0}));
+            }
+    return grid;
+}
+
+/// Rays along the axes (both signs, -0 components), many exactly in axisQuadGrid's planes, with
+/// and without a t interval, plus rays with a NaN origin, an infinite tmax and a NaN tmax.
+inline std::vector<Ray> axisAndNonFiniteRays() {
+    std::vector<Ray> rays;
+    const float coords[] = {-1.0f, 0.0f, 0.5f, 1.0f, 1.25f, 2.0f, 3.0f, 4.0f, 5.0f};
+    for (int axis = 0; axis < 3; ++axis)
+        for (float sign : {1.0f, -1.0f})
+            for (float u : coords)
+                for (float v : coords)
+                    for (float start : {-2.0f, 0.0f, 2.0f, 2.5f, 6.0f}) {
+                        glm::vec3 o(0.0f), d(0.0f);
+                        o[axis] = start;
+                        o[(axis + 1) % 3] = u;
+                        o[(axis + 2) % 3] = v;
+                        d[axis] = sign;
+                        if (sign < 0) d[(axis + 1) % 3] = -0.0f;
+                        rays.push_back({o, d, 0.0f, gpu::VKP_FAR});
+                        rays.push_back({o, d, 1e-3f, 3.0f});
+                    }
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    rays.push_back({glm::vec3(nan, 0, 0), glm::vec3(0, 0, 1), 0.0f, gpu::VKP_FAR});
+    rays.push_back({glm::vec3(0), glm::vec3(0, 0, 1), 0.0f, std::numeric_limits<float>::infinity()});
+    rays.push_back({glm::vec3(2, 2, -3), glm::vec3(0, 0, 1), 0.0f, nan});
     return rays;
 }
 
