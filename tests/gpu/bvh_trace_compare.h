@@ -1,0 +1,127 @@
+// A GPU traversal kernel (shaders/tests/bvh_trace.comp, binary or 4-wide) against its CPU twin on
+// the same nodes, primitives and rays, and the scenarios both layouts are tested on
+// (tests/gpu/test_gpu_bvh.cpp, test_gpu_bvh_wide.cpp): the same closest hit (t bit-exact,
+// primitive), the same any-hit answer and the same loop-pass counts.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "bvh/flatten.h"
+#include "bvh/traverse_cpu.h"
+#include "bvh_test_scenes.h"
+#include "vk/buffer.h"
+#include "vk/compute_pipeline.h"
+#include "vk/device.h"
+
+namespace vkp::test {
+
+struct BvhComparison {
+    int mismatches = 0, passDifferences = 0, hits = 0, cutShort = 0;
+};
+
+/// The CPU twin of one layout: closest hit (any = false) or any hit (any = true) of a ray.
+using CpuTrace = std::function<TraceResult(const Ray&, bool any)>;
+
+/// Runs the traversal kernel `spirv` (bindings: rays, nodes, prims, results) on `nodeBytes` and
+/// `prims` for every ray and compares each result with `cpu`. `what` names the layout in messages.
+inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodeBytes,
+                                      std::size_t nodeSize, const std::vector<gpu::GpuPrim>& prims,
+                                      const std::vector<Ray>& rays, const CpuTrace& cpu, const char* what) {
+    std::vector<glm::vec4> rayData;
+    for (const Ray& r : rays) {
+        rayData.emplace_back(r.o, r.tmin);
+        rayData.emplace_back(r.d, r.tmax);
+    }
+    const auto storage = vk::BufferUsageFlagBits::eStorageBuffer;
+    const auto texel = vk::BufferUsageFlagBits::eUniformTexelBuffer;
+    GpuBuffer rayBuf(dev, rayData.size() * sizeof(glm::vec4), storage);
+    rayBuf.upload(rayData.data(), rayData.size() * sizeof(glm::vec4));
+    GpuBuffer nodeBuf(dev, nodeSize, texel);
+    nodeBuf.upload(nodeBytes, nodeSize);
+    GpuBuffer primBuf(dev, prims.size() * sizeof(gpu::GpuPrim), texel);
+    primBuf.upload(prims.data(), prims.size() * sizeof(gpu::GpuPrim));
+    GpuBuffer outBuf(dev, rays.size() * sizeof(glm::uvec4), storage);
+    ComputePipelineDesc desc;
+    desc.spirv = spirv;
+    desc.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eUniformTexelBuffer,
+                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer};
+    ComputePipeline pipe(dev, desc);
+    const auto nodeView = nodeBuf.texelView();
+    const auto primView = primBuf.texelView();
+    pipe.bindBuffer(0, rayBuf.buffer());
+    pipe.bindTexelView(1, *nodeView);
+    pipe.bindTexelView(2, *primView);
+    pipe.bindBuffer(3, outBuf.buffer());
+    const auto groups = std::uint32_t((rays.size() + 63) / 64);
+    dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipe.recordDispatch(cmd, groups, 1, nullptr, 0); });
+    std::vector<glm::uvec4> out(rays.size());
+    outBuf.download(out.data(), out.size() * sizeof(glm::uvec4));
+    dev.instance().throwIfValidationMessages(std::string("in the ") + what + " traversal test");
+
+    BvhComparison c;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const TraceResult closest = cpu(rays[i], false);
+        const TraceResult any = cpu(rays[i], true);
+        float gpuT;
+        std::memcpy(&gpuT, &out[i].x, sizeof gpuT);
+        const bool gpuAny = out[i].w & 1u;
+        c.hits += closest.hit;
+        c.cutShort += closest.cutShort() || any.cutShort();
+        const bool same = std::memcmp(&gpuT, &closest.t, sizeof gpuT) == 0 && out[i].y == closest.prim && gpuAny == any.hit;
+        if (!same && c.mismatches++ < 5)
+            ADD_FAILURE() << what << " ray " << i << ": gpu t " << gpuT << " prim " << out[i].y << " any " << gpuAny
+                          << " | cpu t " << closest.t << " prim " << closest.prim << " any " << any.hit;
+        if (out[i].z != closest.passes || (out[i].w >> 1) != any.passes) ++c.passDifferences;
+    }
+    return c;
+}
+
+/// Builds the layout's BVH for `shapes`, runs the kernel and the CPU twin on `rays`.
+using BvhCompare = std::function<BvhComparison(const std::vector<Shape>& shapes, const std::vector<Ray>& rays)>;
+
+/// 2000 triangles, 1000 spheres and 1000 quads, 20,000 random rays.
+inline void expectMixedPrimitivesMatch(const BvhCompare& compare) {
+    std::vector<Shape> mix = randomTriangles(2000, 7);
+    for (const Shape& s : randomSpheres(1000, 8)) mix.push_back(s);
+    for (const Shape& s : randomQuads(1000, 9)) mix.push_back(s);
+    const BvhComparison c = compare(mix, randomRays(mix, 20000, 10));
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_GT(c.hits, 5000);  // the rays do hit things: the comparison is not vacuous
+}
+
+/// A 100k-triangle sphere mesh: a traversal cut short by lavapipe's loop limiter would show here.
+inline void expectDenseMeshMatches(const BvhCompare& compare) {
+    const std::vector<Shape> mesh = sphereMesh(224, 224, 5.0f);
+    ASSERT_GE(mesh.size(), 100000u);
+    const BvhComparison c = compare(mesh, randomRays(mesh, 5000, 11, 6.0f));
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_EQ(c.cutShort, 0);
+    EXPECT_GT(c.hits, 1000);
+}
+
+/// Axis-parallel rays in the planes of axis-aligned quads, and non-finite rays.
+inline void expectAxisAndNonFiniteRaysMatch(const BvhCompare& compare) {
+    const BvhComparison c = compare(axisQuadGrid(), axisAndNonFiniteRays());
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_GT(c.hits, 100);
+}
+
+/// No primitive at all, and a single sphere.
+inline void expectEmptyAndSinglePrimitiveScenesMatch(const BvhCompare& compare) {
+    BvhComparison c = compare({}, randomRays({}, 100, 3));
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_EQ(c.hits, 0);
+    const std::vector<Shape> one = {sphere(glm::vec3(0), 1.0f)};
+    c = compare(one, randomRays(one, 300, 3, 2.0f));
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_GT(c.hits, 0);
+}
+
+}  // namespace vkp::test
