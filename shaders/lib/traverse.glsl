@@ -55,6 +55,7 @@ GpuWideNode fetchWideNode(uint i) {
 #else
 
 #include "shared/intersect.h"
+#include "lib/leaf_test.glsl"
 
 #ifndef VKP_MAX_PASSES
 #define VKP_MAX_PASSES 60000u
@@ -94,16 +95,7 @@ bool vkpTraverse(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out 
         for (uint i = 0u; i < nl + nr; ++i) {
             passes += 1u;
             uint p = (i < nl) ? il + i : ir + (i - nl);
-            vec2 ab;
-            GpuPrim pr = fetchPrim(p);
-            float th = intersectPrim(pr, o, d, tmin, t, ab);
-#ifdef VKP_ANY_HIT
-            if (th < t && !VKP_ANY_HIT(p, pr, ab, o, d)) th = VKP_FAR;  // a hole or passed through (lib/alpha.glsl)
-#endif
-            if (th < t) {
-                t = th;
-                primIndex = p;
-                abHit = ab;
+            if (vkpLeafHit(p, o, d, tmin, t, primIndex, abHit)) {
                 found = true;
                 if (anyHit) break;
             }

@@ -19,6 +19,7 @@
 
 #include "shared/intersect.h"
 #include "shared/wide_bvh.h"
+#include "lib/leaf_test.glsl"
 
 #ifndef VKP_MAX_PASSES
 #define VKP_MAX_PASSES 60000u
@@ -77,16 +78,7 @@ bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, 
                    : (i < s2) ? n.index.y + (i - s1)
                    : (i < s3) ? n.index.z + (i - s2)
                               : n.index.w + (i - s3);
-            vec2 ab;
-            GpuPrim pr = fetchPrim(p);
-            float th = intersectPrim(pr, o, d, tmin, t, ab);
-#ifdef VKP_ANY_HIT
-            if (th < t && !VKP_ANY_HIT(p, pr, ab, o, d)) th = VKP_FAR;  // a rejected candidate (as in lib/traverse.glsl on main: alpha)
-#endif
-            if (th < t) {
-                t = th;
-                primIndex = p;
-                abHit = ab;
+            if (vkpLeafHit(p, o, d, tmin, t, primIndex, abHit)) {
                 found = true;
                 if (anyHit) break;
             }

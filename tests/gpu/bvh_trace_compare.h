@@ -5,6 +5,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <span>
@@ -26,11 +27,14 @@ struct BvhComparison {
 /// The CPU twin of one layout: closest hit (any = false) or any hit (any = true) of a ray.
 using CpuTrace = std::function<TraceResult(const Ray&, bool any)>;
 
-/// Runs the traversal kernel `spirv` (bindings: rays, nodes, prims, results) on `nodeBytes` and
-/// `prims` for every ray and compares each result with `cpu`. `what` names the layout in messages.
-inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodeBytes,
-                                      std::size_t nodeSize, const std::vector<gpu::GpuPrim>& prims,
-                                      const std::vector<Ray>& rays, const CpuTrace& cpu, const char* what) {
+/// Runs the traversal kernel `spirv` (shaders/tests/bvh_trace.comp or a variant; bindings: rays,
+/// nodes, prims, results) on `nodeBytes` and `prims` for every ray; returns its uvec4 per ray
+/// (t bits, primitive, closest-hit passes, any-hit bit | any-hit passes << 1). Rows of 1024
+/// workgroups of 64 rays: the kernel maps invocation (x, y) to ray x + y * (groups in x) * 64.
+inline std::vector<glm::uvec4> runTraversalKernel(VulkanDevice& dev, std::span<const std::uint32_t> spirv,
+                                                  const void* nodeBytes, std::size_t nodeSize,
+                                                  const std::vector<gpu::GpuPrim>& prims, const std::vector<Ray>& rays,
+                                                  const char* what) {
     std::vector<glm::vec4> rayData;
     for (const Ray& r : rays) {
         rayData.emplace_back(r.o, r.tmin);
@@ -57,11 +61,19 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
     pipe.bindTexelView(2, *primView);
     pipe.bindBuffer(3, outBuf.buffer());
     const auto groups = std::uint32_t((rays.size() + 63) / 64);
-    dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipe.recordDispatch(cmd, groups, 1, nullptr, 0); });
+    const std::uint32_t gx = std::max(1u, std::min(groups, 1024u)), gy = (groups + gx - 1) / gx;
+    dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipe.recordDispatch(cmd, gx, gy, nullptr, 0); });
     std::vector<glm::uvec4> out(rays.size());
     outBuf.download(out.data(), out.size() * sizeof(glm::uvec4));
     dev.instance().throwIfValidationMessages(std::string("in the ") + what + " traversal test");
+    return out;
+}
 
+/// runTraversalKernel, then every ray's result compared with `cpu`.
+inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodeBytes,
+                                      std::size_t nodeSize, const std::vector<gpu::GpuPrim>& prims,
+                                      const std::vector<Ray>& rays, const CpuTrace& cpu, const char* what) {
+    const std::vector<glm::uvec4> out = runTraversalKernel(dev, spirv, nodeBytes, nodeSize, prims, rays, what);
     BvhComparison c;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const TraceResult closest = cpu(rays[i], false);

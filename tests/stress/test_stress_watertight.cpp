@@ -21,11 +21,10 @@
 #include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"
 #include "bvh_trace.spv.h"
+#include "bvh_trace_compare.h"
 #include "bvh_trace_wide.spv.h"
 #include "gpu_env.h"
 #include "shared/intersect.h"
-#include "vk/buffer.h"
-#include "vk/compute_pipeline.h"
 
 namespace vkp::test {
 namespace {
@@ -215,38 +214,7 @@ template <class CpuTrace>
 void checkDeviceEscapes(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodes, std::size_t nodeBytes,
                         CpuTrace cpu, const char* who) {
     const MeshRays& mr = meshRays();
-    std::vector<glm::vec4> rayData;
-    for (const Ray& r : mr.rays) {
-        rayData.emplace_back(r.o, r.tmin);
-        rayData.emplace_back(r.d, r.tmax);
-    }
-    const auto storage = vk::BufferUsageFlagBits::eStorageBuffer;
-    const auto texel = vk::BufferUsageFlagBits::eUniformTexelBuffer;
-    GpuBuffer rayBuf(dev, rayData.size() * sizeof(glm::vec4), storage);
-    rayBuf.upload(rayData.data(), rayData.size() * sizeof(glm::vec4));
-    GpuBuffer nodeBuf(dev, nodeBytes, texel);
-    nodeBuf.upload(nodes, nodeBytes);
-    GpuBuffer primBuf(dev, mr.bvh.prims.size() * sizeof(gpu::GpuPrim), texel);
-    primBuf.upload(mr.bvh.prims.data(), mr.bvh.prims.size() * sizeof(gpu::GpuPrim));
-    GpuBuffer outBuf(dev, mr.rays.size() * sizeof(glm::uvec4), storage);
-    ComputePipelineDesc desc;
-    desc.spirv = spirv;
-    desc.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer};
-    ComputePipeline pipe(dev, desc);
-    const auto nodeView = nodeBuf.texelView();
-    const auto primView = primBuf.texelView();
-    pipe.bindBuffer(0, rayBuf.buffer());
-    pipe.bindTexelView(1, *nodeView);
-    pipe.bindTexelView(2, *primView);
-    pipe.bindBuffer(3, outBuf.buffer());
-    // Rows of 1024 workgroups (64 rays each): the kernel maps (x, y) to ray x + y * 65536.
-    const auto groups = std::uint32_t((mr.rays.size() + 63) / 64);
-    const std::uint32_t gx = std::min(groups, 1024u), gy = (groups + gx - 1) / gx;
-    dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipe.recordDispatch(cmd, gx, gy, nullptr, 0); });
-    std::vector<glm::uvec4> out(mr.rays.size());
-    outBuf.download(out.data(), out.size() * sizeof(glm::uvec4));
-    dev.instance().throwIfValidationMessages("in the watertight traversal test");
+    const std::vector<glm::uvec4> out = runTraversalKernel(dev, spirv, nodes, nodeBytes, mr.bvh.prims, mr.rays, who);
     std::vector<std::size_t> escaped;
     long mismatches = 0;
     for (std::size_t i = 0; i < out.size(); ++i) {
