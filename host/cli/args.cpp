@@ -45,6 +45,8 @@ render options:
   --rr-depth N            Russian roulette from the Nth ray of a path on (default: the scene's, 3)
   --sampler S             bsdf | light | mixture (the book's) | mis (default)
   --sequence Q            sobol (default: Owen-scrambled Sobol' points) | random (independent numbers)
+  --light-pick P          power (default: emitters in proportion to their power) | uniform
+  --light-sampling L      solid-angle (default for quads/triangles) | area (the book's)
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
@@ -117,6 +119,13 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             } else if (f == "--sequence") {
                 const std::string s = value(f);
                 if (!parseSequence(s, a.sequence)) usage("--sequence must be random or sobol, got '" + s + "'");
+            } else if (f == "--light-pick") {
+                const std::string s = value(f);
+                if (!parseLightPick(s, a.lightPick)) usage("--light-pick must be power or uniform, got '" + s + "'");
+            } else if (f == "--light-sampling") {
+                const std::string s = value(f);
+                if (!parseLightSampling(s, a.lightSampling))
+                    usage("--light-sampling must be solid-angle or area, got '" + s + "'");
             } else if (f == "--variant") {
                 const std::string v = value(f);
                 if (v == "full") a.fullVariant = true;

@@ -22,6 +22,8 @@ struct CliArgs {
     double timeLimit = 0.0;                      // --time SECONDS (0: none)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;         // --sequence random|sobol
+    LightPick lightPick = LightPick::Power;      // --light-pick power|uniform
+    LightSampling lightSampling = LightSampling::SolidAngle;  // --light-sampling solid-angle|area
     bool fullVariant = false;                    // --variant full
     std::string device;                          // --device N | NAME-SUBSTRING
     bool validate = false;

@@ -84,6 +84,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     RendererOptions ro;
     ro.sampler = a.sampler;
     ro.sequence = a.sequence;
+    ro.lightPick = a.lightPick;
+    ro.lightSampling = a.lightSampling;
     ro.fullVariant = a.fullVariant;
     ro.samplesPerDispatch = a.samplesPerDispatch;
     ro.adaptiveThreshold = a.adaptiveThreshold;
@@ -142,6 +144,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.scene = a.scene.string();
         st.sampler = samplerName(a.sampler);
         st.sequence = sequenceName(a.sequence);
+        st.lightPick = lightPickName(a.lightPick);
+        st.lightSampling = lightSamplingName(a.lightSampling);
         st.variant = renderer.features().name();
         st.fullVariant = a.fullVariant;
         st.width = scene.camera.width;
@@ -189,6 +193,7 @@ int runInfo(const CliArgs& a) {
     const FlatBvh bvh = buildFlatBvh(scene);
     Features f = sceneFeatures(scene, a.sampler);
     f.sequence = a.sequence;
+    f.lightSampling = a.lightSampling;
     std::printf("scene        %s\n", a.scene.string().c_str());
     std::printf("image        %ux%u, %u spp, max depth %u, seed %u\n", scene.camera.width, scene.camera.height,
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);

@@ -88,8 +88,9 @@ double envMeanLuminance(const Scene& scene) {
     return sum * (kPi / img.height) * (2.0 * kPi / img.width) / (4.0 * kPi);
 }
 
-double envPickProbability(const Scene& scene) {
+double envPickProbability(const Scene& scene, LightPick pick) {
     if (!hasEnvironmentLight(scene)) return 0.0;
+    if (pick == LightPick::Uniform) return 1.0 / (1.0 + double(emittingLightCount(scene)));
     double emitters = 0.0;
     const std::vector<glm::dvec3> scales = emissionScales(scene);
     for (std::uint32_t shape : scene.lights) emitters += lightPower(scene, shape, &scales);

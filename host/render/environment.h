@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "render/features.h"
 #include "scene/scene.h"
 
 namespace vkp {
@@ -34,8 +35,9 @@ EnvTables packEnvironment(const Scene& scene);
 /// power, clamped to [0.1, 0.9] so that neither kind starves when the estimate is poor. Power
 /// estimates (pbrt-v4's Phi, up to the common factor pi): environment 4 pi r^2 Lavg (r = radius of
 /// the scene's bounding sphere, Lavg = solid-angle mean of the luminance), emitters the sum of
-/// lightPower (light_table.h).
-double envPickProbability(const Scene& scene);
+/// lightPower (light_table.h). With LightPick::Uniform the environment is one more light among
+/// the n emitters: 1 / (n + 1).
+double envPickProbability(const Scene& scene, LightPick pick = LightPick::Power);
 
 /// Solid-angle mean of the luminance of the environment (map or constant background).
 double envMeanLuminance(const Scene& scene);

@@ -32,10 +32,28 @@ bool parseSequence(const std::string& name, Sequence& out) {
     return true;
 }
 
+const char* lightPickName(LightPick p) { return p == LightPick::Uniform ? "uniform" : "power"; }
+
+bool parseLightPick(const std::string& name, LightPick& out) {
+    if (name == "power") out = LightPick::Power;
+    else if (name == "uniform") out = LightPick::Uniform;
+    else return false;
+    return true;
+}
+
+const char* lightSamplingName(LightSampling s) { return s == LightSampling::Area ? "area" : "solid-angle"; }
+
+bool parseLightSampling(const std::string& name, LightSampling& out) {
+    if (name == "solid-angle") out = LightSampling::SolidAngle;
+    else if (name == "area") out = LightSampling::Area;
+    else return false;
+    return true;
+}
+
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures, alpha, std::uint32_t(sequence)};
+            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling == LightSampling::SolidAngle};
 }
 
 std::string Features::name() const {
@@ -64,6 +82,7 @@ std::string Features::name() const {
     out += samplerName(sampler);
     out += " sequence:";
     out += sequenceName(sequence);
+    if (lightSampling == LightSampling::Area) out += " light-sampling:area";
     if (defocus) out += " defocus";
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";

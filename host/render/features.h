@@ -23,6 +23,22 @@ const char* sequenceName(Sequence s);
 /// "random" | "sobol" -> Sequence; false if unknown.
 bool parseSequence(const std::string& name, Sequence& out);
 
+/// How next-event estimation picks an emitter: in proportion to its power (default; alias table,
+/// render/light_table.h) or uniformly among the emitters (`--light-pick uniform`, for comparison).
+enum class LightPick : std::uint32_t { Power = 0, Uniform = 1 };
+const char* lightPickName(LightPick p);
+/// "power" | "uniform" -> LightPick; false if unknown.
+bool parseLightPick(const std::string& name, LightPick& out);
+
+/// How next-event estimation samples a point on a quad or triangle light: uniformly in the solid
+/// angle it subtends (default; Urena et al. 2013 for rectangles, Arvo 1995 for triangles) or
+/// uniformly in area (the book's, `--light-sampling area`, for comparison). `mixture` always
+/// samples area, as the book does.
+enum class LightSampling : std::uint32_t { SolidAngle = 0, Area = 1 };
+const char* lightSamplingName(LightSampling s);
+/// "solid-angle" | "area" -> LightSampling; false if unknown.
+bool parseLightSampling(const std::string& name, LightSampling& out);
+
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
@@ -36,8 +52,9 @@ struct Features {
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
+    LightSampling lightSampling = LightSampling::SolidAngle;
 
-    /// Values for constant_id 0..16, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// Values for constant_id 0..17, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
     /// lib/alpha.glsl).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".

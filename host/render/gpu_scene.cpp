@@ -49,7 +49,7 @@ std::uint32_t tileStride(std::uint32_t n) {
     return std::uint32_t(s);
 }
 
-gpu::GpuFrame packFrame(const Scene& scene) {
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick) {
     gpu::GpuFrame f{};
     packCamera(scene.camera, f);
     f.background = v4(scene.render.background);
@@ -58,7 +58,7 @@ gpu::GpuFrame packFrame(const Scene& scene) {
     const std::uint32_t groupsX = (scene.camera.width + 7) / 8, groupsY = (scene.camera.height + 7) / 8;
     f.tiles = glm::uvec4(groupsX, groupsX * groupsY, tileStride(groupsX * groupsY), 0);
     const double rot = glm::radians(double(scene.environment.rotateY));
-    f.env = glm::vec4(float(std::cos(rot)), float(std::sin(rot)), float(envPickProbability(scene)),
+    f.env = glm::vec4(float(std::cos(rot)), float(std::sin(rot)), float(envPickProbability(scene, pick)),
                       hasEnvironmentLight(scene) ? 1.0f : 0.0f);
     if (scene.environment.hasMap())
         f.envSize = glm::uvec4(scene.environment.image.width, scene.environment.image.height, 0, 0);

@@ -2,6 +2,7 @@
 #pragma once
 #include <vector>
 
+#include "render/features.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 
@@ -15,8 +16,9 @@ void packCamera(const Camera& cam, gpu::GpuFrame& frame);
 /// Stride s of the scrambled tile order (GpuFrame::tiles): coprime with n, n * s < 2^32.
 std::uint32_t tileStride(std::uint32_t n);
 
-/// Everything in GpuFrame for a render of scene at its (possibly overridden) settings.
-gpu::GpuFrame packFrame(const Scene& scene);
+/// Everything in GpuFrame for a render of scene at its (possibly overridden) settings; `pick`
+/// decides the environment's share of next-event estimation (envPickProbability).
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power);
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
 

@@ -77,10 +77,13 @@ AliasTable buildAliasTable(const std::vector<double>& weights) {
     return t;
 }
 
-std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape) {
+std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape, LightPick pick) {
     std::vector<double> power;
     const std::vector<glm::dvec3> scales = emissionScales(scene);
-    for (std::uint32_t shape : scene.lights) power.push_back(lightPower(scene, shape, &scales));
+    for (std::uint32_t shape : scene.lights) {
+        const double w = lightPower(scene, shape, &scales);
+        power.push_back(pick == LightPick::Uniform ? (w > 0.0 ? 1.0 : 0.0) : w);
+    }
     const AliasTable table = buildAliasTable(power);
     std::vector<gpu::GpuLight> out;
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {

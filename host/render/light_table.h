@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/features.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
 
@@ -32,7 +33,10 @@ struct AliasTable {
 AliasTable buildAliasTable(const std::vector<double>& weights);
 
 /// One GpuLight per entry of scene.lights, in order; primOfShape maps a shape to its primitive.
-std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape);
+/// Emitters are picked in proportion to their power (lightPower), or each with the same
+/// probability for LightPick::Uniform; objects that do not emit get probability 0 either way.
+std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape,
+                                      LightPick pick = LightPick::Power);
 
 /// Number of entries of scene.lights whose material emits.
 std::uint32_t emittingLightCount(const Scene& scene);

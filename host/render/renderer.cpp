@@ -90,6 +90,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       adaptiveThreshold_(options.adaptiveThreshold),
       adaptiveMinSpp_(options.adaptiveMinSpp) {
     features_.sequence = options.sequence;
+    features_.lightSampling = options.lightSampling;
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     // The kernel traverses the 4-wide layout (lib/traverse.glsl): FlatBvh::wideNodes, or collapsed here
     // for a FlatBvh that came from flattenBvh alone.
@@ -116,7 +117,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
-    gpu::GpuFrame frame = packFrame(scene);
+    gpu::GpuFrame frame = packFrame(scene, options.lightPick);
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
     std::vector<glm::vec4> materialTexels;
     for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
@@ -132,7 +133,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->nodes = uploadTexels(device, wideNodes);
     impl_->prims = uploadTexels(device, bvh.prims);
     impl_->materials = uploadTexels(device, materialTexels);
-    impl_->lights = uploadTexels(device, packLights(scene, primOfShape));
+    impl_->lights = uploadTexels(device, packLights(scene, primOfShape, options.lightPick));
     impl_->nodesView = impl_->nodes->texelView();
     impl_->primsView = impl_->prims->texelView();
     impl_->materialsView = impl_->materials->texelView();

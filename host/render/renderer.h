@@ -18,6 +18,8 @@ struct RendererOptions {
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;  ///< where samples' random numbers come from (`--sequence`)
     bool fullVariant = false;              ///< compile every feature in (`--variant full`)
+    LightPick lightPick = LightPick::Power;  ///< how NEE picks an emitter (`--light-pick`)
+    LightSampling lightSampling = LightSampling::SolidAngle;  ///< NEE on quads/triangles (`--light-sampling`)
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;

@@ -68,6 +68,8 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("seed", num(std::uint64_t(s.seed)));
     w.str("sampler", s.sampler);
     w.str("sequence", s.sequence);
+    w.str("light_pick", s.lightPick);
+    w.str("light_sampling", s.lightSampling);
     w.str("variant", s.variant);
     w.raw("variant_full", s.fullVariant ? "true" : "false");
     w.raw("samples_per_dispatch", num(std::uint64_t(s.samplesPerDispatch)));

@@ -15,6 +15,8 @@ struct RunStats {
     std::string scene;     ///< the scene file as given on the command line
     std::string sampler;   ///< bsdf | light | mixture
     std::string sequence;  ///< random | sobol (--sequence)
+    std::string lightPick = "power";             ///< power | uniform (--light-pick)
+    std::string lightSampling = "solid-angle";   ///< solid-angle | area (--light-sampling)
     std::string variant;   ///< Features::name() of the pipeline
     bool fullVariant = false;
     std::uint32_t width = 0, height = 0, maxDepth = 0, seed = 0, samplesPerDispatch = 1;

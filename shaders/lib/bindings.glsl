@@ -20,6 +20,7 @@ layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see ra
 layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
 layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
 layout(constant_id = 16) const uint SEQUENCE = 1u;   // SEQUENCE_* below (shared/sample_stream.h)
+layout(constant_id = 17) const bool SOLID_ANGLE_LIGHTS = true;  // NEE samples quads/triangles in solid angle (else area)
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES

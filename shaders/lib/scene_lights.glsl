@@ -16,8 +16,9 @@ uint lightCount() { return frame.counts.x; }
 // Quads and triangles: the book's uniform area sampling for `mixture` (exactly as the book defines
 // it); for next-event estimation solid-angle sampling of rectangles (Urena et al. 2013) and of
 // triangles (Arvo 1995), area sampling as their fallback (shared/rect_sampling.h,
-// shared/triangle_sampling.h).
-const bool SOLID_ANGLE_QUADS = SAMPLER != SAMPLER_MIXTURE;
+// shared/triangle_sampling.h); `--light-sampling area` (SOLID_ANGLE_LIGHTS false) keeps area
+// sampling for every sampler, to measure what solid-angle sampling buys.
+const bool SOLID_ANGLE_QUADS = SAMPLER != SAMPLER_MIXTURE && SOLID_ANGLE_LIGHTS;
 
 /// Direction towards a point sampled on primitive p as seen from x (pdf 0: no sample).
 LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {

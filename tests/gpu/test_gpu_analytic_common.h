@@ -176,29 +176,43 @@ struct SceneRender {
     std::unique_ptr<Renderer> renderer;
 };
 
-/// Builds and uploads `scene` for `sampler`. samplesPerDispatch: see RendererOptions.
-inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sampler sampler,
-                                   std::uint32_t samplesPerDispatch = 4) {
+/// Builds and uploads `scene` with renderer options `o`.
+inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, const RendererOptions& o) {
     SceneRender r;
     r.scene = scene;
     r.bvh = buildFlatBvh(r.scene);
-    RendererOptions o;
-    o.sampler = sampler;
-    o.samplesPerDispatch = samplesPerDispatch;
     r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
     return r;
 }
 
-/// Renders `scene` with `sampler` for spp samples and returns the sums; expects no non-finite
+/// Builds and uploads `scene` for `sampler`. samplesPerDispatch: see RendererOptions.
+inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sampler sampler,
+                                   std::uint32_t samplesPerDispatch = 4) {
+    RendererOptions o;
+    o.sampler = sampler;
+    o.samplesPerDispatch = samplesPerDispatch;
+    return makeSceneRender(dev, scene, o);
+}
+
+/// Renders `scene` with options `o` for spp samples and returns the sums; expects no non-finite
 /// sample and no path cut by the loop guard.
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RendererOptions& o, std::uint32_t spp,
                             const std::string& what) {
-    SceneRender r = makeSceneRender(dev, scene, sampler);
+    SceneRender r = makeSceneRender(dev, scene, o);
     r.renderer->addSamples(spp);
     const RenderCounters c = r.renderer->counters();
-    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(sampler);
-    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(sampler);
+    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(o.sampler);
+    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(o.sampler);
     return r.renderer->readSums();
+}
+
+/// renderSums with `sampler` and 4 samples per dispatch.
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
+                            const std::string& what) {
+    RendererOptions o;
+    o.sampler = sampler;
+    o.samplesPerDispatch = 4;
+    return renderSums(dev, scene, o, spp, what);
 }
 
 // ---- Closed-form irradiance on a plane, averaged over pixel footprints -------------------------

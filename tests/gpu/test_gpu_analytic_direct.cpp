@@ -141,5 +141,73 @@ TEST(GpuAnalytic, PlaneUnderSphereLight) {
                [](glm::dvec3 x) { return sphereIrradiance(x, glm::dvec3(0, 0, 1), glm::dvec3(-3, 0, 1.2), 0.5); });
 }
 
+
+// Three lights of different power (a quad, a triangle and a sphere) and a constant sky over the
+// plane, rendered by next-event estimation (`light`, `mis`) with every light pick (power, uniform)
+// and every light sampling (solid angle, area): the estimators differ only in variance, so each
+// must converge to (rho / pi) (pi B + sum_i (L_i - B) E_i), E_i the irradiance of light i per unit
+// radiance (the lights hide the sky B over exactly their projected solid angle E_i). 8 renders x
+// 3 channels x (image + 4 quadrants) = 120 z-tests of this executable's budget.
+TEST(GpuAnalytic, PlaneUnderThreeLightsEveryPickAndLightSampling) {
+    VKP_REQUIRE_DEVICE(dev);
+    const glm::dvec3 rho(0.2, 0.5, 0.8);
+    const double B = 0.5;
+    const std::vector<glm::dvec3> quad = {{2.5, -0.5, 1.5}, {2.5, 0.5, 1.5}, {3.5, 0.5, 1.5}, {3.5, -0.5, 1.5}};
+    const std::vector<glm::dvec3> tri = {{-1, 2.5, 1.0}, {1, 2.5, 1.0}, {0, 3.5, 2.0}};
+    const glm::dvec3 sc(-3, 0, 1.2);
+    const double sr = 0.5, Lq = 10.0, Lt = 40.0, Ls = 2.5;
+    Scene scene = parseSceneJson(R"({
+      "camera": {"lookfrom": [0, 0, 100], "lookat": [0, 0, 0], "vup": [0, 1, 0], "vfov": 2.2913, "width": 16, "height": 16},
+      "render": {"max_depth": 2, "background": [0.5, 0.5, 0.5]},
+      "materials": {"plane": {"type": "lambertian", "albedo": [0.2, 0.5, 0.8]},
+                    "lampQ": {"type": "diffuse_light", "emit": [10, 10, 10], "two_sided": true},
+                    "lampT": {"type": "diffuse_light", "emit": [40, 40, 40], "two_sided": true},
+                    "lampS": {"type": "diffuse_light", "emit": [2.5, 2.5, 2.5]}},
+      "objects": [{"type": "quad", "Q": [-50, -50, 0], "u": [100, 0, 0], "v": [0, 100, 0], "material": "plane"},
+                  {"type": "quad", "Q": [2.5, -0.5, 1.5], "u": [0, 1, 0], "v": [1, 0, 0], "material": "lampQ"},
+                  {"type": "triangle", "v0": [-1, 2.5, 1.0], "v1": [1, 2.5, 1.0], "v2": [0, 3.5, 2.0], "material": "lampT"},
+                  {"type": "sphere", "center": [-3, 0, 1.2], "radius": 0.5, "material": "lampS"}]})",
+                                 "plane-three-lights.json");
+    gpu::GpuFrame f{};
+    packCamera(scene.camera, f);
+    const glm::dvec3 n(0, 0, 1);
+    std::vector<double> expected(16 * 16);
+    for (std::uint32_t j = 0; j < 16; ++j)
+        for (std::uint32_t i = 0; i < 16; ++i)
+            expected[j * 16 + i] = footprintMean(f, i, j, [&](glm::dvec3 x) {
+                                       return kPi * B + (Lq - B) * polygonIrradiance(x, n, quad) +
+                                              (Lt - B) * polygonIrradiance(x, n, tri) + (Ls - B) * sphereIrradiance(x, n, sc, sr);
+                                   }) / kPi;
+    std::uint32_t seed = 40;
+    for (Sampler s : {Sampler::Light, Sampler::Mis})
+        for (LightPick pick : {LightPick::Power, LightPick::Uniform})
+            for (LightSampling ls : {LightSampling::SolidAngle, LightSampling::Area}) {
+                RendererOptions o;
+                o.sampler = s;
+                o.lightPick = pick;
+                o.lightSampling = ls;
+                o.samplesPerDispatch = 4;
+                scene.render.seed = seed++;
+                const std::string name =
+                    std::string(samplerName(s)) + " pick " + lightPickName(pick) + " sampling " + lightSamplingName(ls);
+                const PixelStats st(renderSums(dev, scene, o, 1024, name));
+                for (int c = 0; c < 3; ++c) {
+                    auto expect = [&](const std::vector<Pixel>& px) {
+                        double sum = 0;
+                        for (const Pixel& p : px) sum += rho[c] * expected[p.y * 16 + p.x];
+                        return sum / double(px.size());
+                    };
+                    const auto all = rect(0, 0, 16, 16);
+                    EXPECT_TRUE(withinNoise(average(st, all, c), expect(all), name + ", image, " + kChannel[c], c == 1));
+                    for (std::uint32_t by = 0; by < 16; by += 8)
+                        for (std::uint32_t bx = 0; bx < 16; bx += 8) {
+                            const auto block = rect(bx, by, bx + 8, by + 8);
+                            EXPECT_TRUE(withinNoise(average(st, block, c), expect(block),
+                                                    name + ", quadrant " + std::to_string(bx) + "," + std::to_string(by) + ", " + kChannel[c]));
+                        }
+                }
+            }
+}
+
 }  // namespace
 }  // namespace vkp::test

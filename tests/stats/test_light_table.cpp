@@ -7,6 +7,7 @@
 
 #include "chi2.h"
 #include "render/light_table.h"
+#include "scene/scene.h"
 #include "shared/light_pick.h"
 #include "stat_suite.h"
 
@@ -35,6 +36,31 @@ TEST(LightTable, AllZeroWeightsGiveNoPicks) {
     const AliasTable t = buildAliasTable({0.0, 0.0});
     EXPECT_EQ(t.probability[0], 0.0f);
     EXPECT_EQ(t.probability[1], 0.0f);
+}
+
+// packLights: a sampled object that does not emit is never picked; emitters get their share of the
+// power, or 1 / (number of emitters) with LightPick::Uniform.
+TEST(LightTable, PackLightsPowerAndUniformPicks) {
+    const Scene scene = parseSceneJson(R"({
+      "camera": {"lookfrom": [0, 0, 5], "lookat": [0, 0, 0], "vup": [0, 1, 0], "vfov": 40, "width": 8, "height": 8},
+      "materials": {"a": {"type": "diffuse_light", "emit": [1, 1, 1]}, "b": {"type": "diffuse_light", "emit": [3, 3, 3]},
+                    "glass": {"type": "dielectric", "ior": 1.5}},
+      "objects": [{"type": "quad", "Q": [0, 0, 0], "u": [1, 0, 0], "v": [0, 1, 0], "material": "a"},
+                  {"type": "quad", "Q": [0, 0, 1], "u": [2, 0, 0], "v": [0, 1, 0], "material": "b"},
+                  {"type": "sphere", "center": [0, 0, -2], "radius": 0.5, "material": "glass", "sample": true}]})",
+                                       "pick.json");
+    ASSERT_EQ(scene.lights.size(), 3u);
+    std::vector<std::uint32_t> primOfShape(scene.shapes.size());
+    for (std::size_t i = 0; i < primOfShape.size(); ++i) primOfShape[i] = std::uint32_t(i);
+    const std::vector<gpu::GpuLight> power = packLights(scene, primOfShape, LightPick::Power);
+    const std::vector<gpu::GpuLight> uniform = packLights(scene, primOfShape, LightPick::Uniform);
+    // Powers 1 * 1 and 3 * 2 (one-sided quads of area 1 and 2): 1/7 and 6/7.
+    EXPECT_NEAR(power[0].l0.y, 1.0f / 7.0f, 1e-6f);
+    EXPECT_NEAR(power[1].l0.y, 6.0f / 7.0f, 1e-6f);
+    EXPECT_EQ(power[2].l0.y, 0.0f);
+    EXPECT_EQ(uniform[0].l0.y, 0.5f);
+    EXPECT_EQ(uniform[1].l0.y, 0.5f);
+    EXPECT_EQ(uniform[2].l0.y, 0.0f);
 }
 
 // Chi-square test of the pick frequencies against the reported probabilities, with the shared

@@ -64,6 +64,20 @@ TEST(CliArgs, Sequence) {
     EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "sobol"}).sequence, Sequence::Sobol);
 }
 
+TEST(CliArgs, LightPickAndSampling) {
+    const CliArgs d = parseArgs({"render", "s.json"});
+    EXPECT_EQ(d.lightPick, LightPick::Power);
+    EXPECT_EQ(d.lightSampling, LightSampling::SolidAngle);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "uniform"}).lightPick, LightPick::Uniform);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "power"}).lightPick, LightPick::Power);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "area"}).lightSampling, LightSampling::Area);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "solid-angle"}).lightSampling, LightSampling::SolidAngle);
+    EXPECT_NE(errorOf({"render", "s.json", "--light-pick", "random"}).find("--light-pick must be power or uniform, got 'random'"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "cone"}).find("--light-sampling must be solid-angle or area"),
+              std::string::npos);
+}
+
 TEST(CliArgs, UsageErrors) {
     EXPECT_NE(errorOf({"paint"}).find("unknown command 'paint'"), std::string::npos);
     EXPECT_NE(errorOf({"render"}).find("needs a scene file"), std::string::npos);

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """vkpath's benchmark suite: run time against error (README "Benchmarks").
 
-For each scene (cornell-book3, cornell-classic, spheres-book1, env-sky (environment-lit) and a
-generated dense-mesh scene) it
+For each scene (cornell-book3, cornell-classic, cornell-lights (25 lights of very different power),
+spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
   1. makes or reuses a cached reference (references.py) and states its spp and noise floor;
   2. warms Mesa's shader cache for every pipeline it will time, then measures the time to first
      pixel with a fresh, empty cache (cold) and again with the same cache (warm);
@@ -48,6 +48,7 @@ BIG_SPP = 1 << 24       # runs are limited by --time
 SCENES = [
     ("cornell-book3", "scenes/cornell-book3.json", (256, 256), (64, 64)),
     ("cornell-classic", "scenes/cornell-classic.json", (256, 256), (64, 64)),
+    ("cornell-lights", "scenes/cornell-lights.json", (256, 256), (64, 64)),
     ("spheres-book1", "scenes/spheres-book1.json", (320, 180), (96, 54)),
     ("env-sky", "scenes/env-sky.json", (320, 180), (96, 54)),
     ("dense-mesh", None, (256, 256), (64, 64)),
@@ -65,6 +66,9 @@ PARTS = ("curves", "scaling", "settings")
 # knob buys. name -> extra vkpath arguments.
 SETTINGS = [
     ("default", []),
+    ("uniform light pick", ["--light-pick", "uniform"]),
+    ("area light sampling", ["--light-sampling", "area"]),
+    ("random sequence", ["--sequence", "random"]),
     ("adaptive 0.02", ["--adaptive", "0.02"]),
     ("adaptive 0.05", ["--adaptive", "0.05"]),
     ("rr-depth 1", ["--rr-depth", "1"]),
@@ -106,8 +110,8 @@ def scene_file(name, path, cfg, size, cache):
     if path is not None:
         return ROOT / path
     nu, nv = cfg["mesh"]
-    out = pathlib.Path(cache) / "scenes" / ("dense-mesh-%dx%d-%dx%d.json" % (nu, nv, size[0], size[1]))
-    if not out.exists():
+    out = pathlib.Path(cache) / "scenes" / ("dense-mesh-glb-%dx%d-%dx%d.json" % (nu, nv, size[0], size[1]))
+    if not out.exists() or not out.with_name(out.stem + "-blob.glb").exists():
         out.parent.mkdir(parents=True, exist_ok=True)
         subprocess.run([sys.executable, str(ROOT / "tools/bench/gen_dense_mesh.py"), str(out), "--nu", str(nu),
                         "--nv", str(nv), "--width", str(size[0]), "--height", str(size[1])], check=True)
@@ -210,17 +214,19 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
                           "full_first_batch": full["seconds_first_batch"]}
     if "settings" in args.parts:
         res["settings"] = bench_settings(vk, scene, runs, wh, ref, "%.3f" % ((args.settings_seconds or cfg["settings"])
-                                                                           + startup), env, name, failures)
+                                                                           + startup), env, name, failures, args.settings)
     if curves:
         report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
     return res, curves
 
 
-def bench_settings(vk, scene, runs, wh, ref, seconds, env, name, failures):
+def bench_settings(vk, scene, runs, wh, ref, seconds, env, name, failures, settings_wanted=None):
     """Equal-time runs of the default sampler, one per SETTINGS entry: final errors and rates, and each
     setting's relMSE over the default's (below 1: the setting helps at equal time)."""
     out = {}
     for label, extra in SETTINGS:
+        if settings_wanted and label not in settings_wanted and label != "default":
+            continue
         tag = "setting-" + "".join(ch if ch.isalnum() else "-" for ch in label)
         st = vk.render(scene, runs, tag, wh + ["--spp", BIG_SPP, "--time", seconds, "--reference", ref["path"],
                                               "-o", tag + ".pfm"] + extra, env)
@@ -257,11 +263,18 @@ def main():
                     % tuple("%dx%d" % MODES[m]["mesh"] for m in ("full", "quick")))
     ap.add_argument("--scaling-seconds", type=float, help="seconds of rendering per thread/variant run")
     ap.add_argument("--settings-seconds", type=float, help="seconds of rendering per equal-time setting run")
+    ap.add_argument("--settings", help="comma-separated subset of the equal-time settings (default: all): " +
+                    ", ".join(label for label, _ in SETTINGS[1:]))
     ap.add_argument("--parts", default=",".join(PARTS),
                     help="comma-separated subset of %s (default: all)" % ", ".join(PARTS))
     args = ap.parse_args()
     mode = "quick" if args.quick else "full"
     args.parts = set(args.parts.split(","))
+    if args.settings:
+        args.settings = set(x.strip() for x in args.settings.split(","))
+        unknown_settings = args.settings - {label for label, _ in SETTINGS}
+        if unknown_settings:
+            ap.error("unknown setting(s): " + ", ".join(sorted(unknown_settings)))
     if args.parts - set(PARTS):
         ap.error("unknown part(s): " + ", ".join(sorted(args.parts - set(PARTS))))
     cfg = dict(MODES[mode])
