@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 
+#include <sys/resource.h>
+
 #include "bvh/flatten.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -169,6 +171,9 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.secondsCheckpoints = r.checkpointSeconds;
         st.secondsOutput = r.outputSeconds;
         st.checkpoints = r.checkpoints;
+        st.sceneBufferBytes = renderer.sceneBufferBytes();
+        rusage ru{};
+        if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
         const DeviceInfo& d = device.info();
         st.deviceName = d.name;
         st.deviceType = kindName(d.kind);

@@ -78,6 +78,14 @@ struct Renderer::Impl {
     std::unique_ptr<ComputePipeline> pipeline;
 };
 
+std::uint64_t Renderer::sceneBufferBytes() const {
+    std::uint64_t n = 0;
+    for (const auto* b : {&impl_->nodes, &impl_->prims, &impl_->materials, &impl_->lights, &impl_->envTexels, &impl_->envDist,
+                          &impl_->attributes, &impl_->texInfo, &impl_->texels})
+        if (*b) n += (*b)->size();
+    return n;
+}
+
 Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh, const RendererOptions& options)
     : impl_(std::make_unique<Impl>()),
       dev_(&device),

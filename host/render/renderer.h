@@ -81,6 +81,9 @@ public:
     Image image() { return readSums().mean(); }
     RenderCounters counters();
     const Features& features() const { return features_; }
+    /// Bytes of the scene's device buffers: BVH nodes, primitives, materials, lights, environment,
+    /// vertex attributes and textures (not the per-pixel accumulation buffers).
+    std::uint64_t sceneBufferBytes() const;
 
 private:
     struct Impl;

@@ -38,6 +38,9 @@ struct RunStats {
     double secondsCheckpoints = 0.0;  ///< image read-backs + error rows
     double secondsOutput = 0.0;       ///< writing dumps and final images
     std::uint32_t checkpoints = 0;
+    // Memory.
+    std::uint64_t peakRssBytes = 0;      ///< the process's peak resident set (getrusage; lavapipe's buffers included)
+    std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
     // The device.
     std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;
     /// LP_NUM_THREADS and MESA_SHADER_CACHE_DIR as set in the environment (empty if unset).

@@ -178,6 +178,11 @@ TEST_F(CliBench, StatsJsonKeysAndConsistency) {
     EXPECT_EQ(j["device"]["name"], dev.info().name);
     EXPECT_EQ(j["environment"]["LP_NUM_THREADS"], "2");
     EXPECT_TRUE(j["error"]["relmse"].is_number());
+    EXPECT_EQ(j["light_pick"], "power");
+    EXPECT_EQ(j["light_sampling"], "solid-angle");
+    // cornell-classic: 18 primitives of 48 bytes at least; a process with a Vulkan device uses megabytes.
+    EXPECT_GE(j["scene_buffer_bytes"].get<double>(), 18 * 48);
+    EXPECT_GT(j["peak_rss_bytes"].get<double>(), 1e6);
     const ProcessResult v = run({"--version"});
     EXPECT_EQ(v.out, "vkpath " + j["vkpath_version"].get<std::string>() + "\n");
 }

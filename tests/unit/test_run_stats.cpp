@@ -24,6 +24,8 @@ RunStats example() {
     s.sppRequested = 16;
     s.rays = 50000;
     s.firstBatchRays = 2000;
+    s.peakRssBytes = 123456789;
+    s.sceneBufferBytes = 4096;
     s.secondsTotal = 3.0;
     s.secondsRender = 2.0;
     s.secondsFirstBatch = 0.5;
@@ -48,6 +50,8 @@ TEST(RunStats, RequiredKeysAndDerivedNumbers) {
     EXPECT_EQ(j["device"]["name"], "llvmpipe\t(LLVM)");
     EXPECT_EQ(j["scene"], "scenes/a \"quoted\" name\\x.json");
     EXPECT_TRUE(j["error"].is_null());
+    EXPECT_EQ(j["peak_rss_bytes"], 123456789);
+    EXPECT_EQ(j["scene_buffer_bytes"], 4096);
 }
 
 TEST(RunStats, NoRenderTimeGivesNullRatesAndErrorIsAnObject) {
