@@ -46,6 +46,9 @@ GpuBuffer::GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlag
     vk::MemoryAllocateInfo mai{};
     mai.allocationSize = req.size;
     mai.memoryTypeIndex = type;
+    vk::MemoryAllocateFlagsInfo flags{};
+    flags.flags = vk::MemoryAllocateFlagBits::eDeviceAddress;
+    if (usage & vk::BufferUsageFlagBits::eShaderDeviceAddress) mai.pNext = &flags;
     memory_ = vk::raii::DeviceMemory(dev.device(), mai);
     buffer_.bindMemory(*memory_, 0);
     const auto props = dev.physical().getMemoryProperties().memoryTypes[type].propertyFlags;
@@ -72,6 +75,12 @@ void GpuBuffer::download(void* dst, std::size_t bytes) {
     Staging s = makeStaging(*dev_, bytes);
     dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) { cmd.copyBuffer(*buffer_, *s.buffer, vk::BufferCopy{0, 0, bytes}); });
     std::memcpy(dst, s.mapped, bytes);
+}
+
+vk::DeviceAddress GpuBuffer::deviceAddress() const {
+    vk::BufferDeviceAddressInfo info{};
+    info.buffer = *buffer_;
+    return dev_->device().getBufferAddress(info);
 }
 
 vk::raii::BufferView GpuBuffer::texelView(vk::Format format) const {

@@ -10,7 +10,8 @@ namespace vkp {
 
 class GpuBuffer {
 public:
-    /// size in bytes (0 is rounded up to 16 so that every binding is valid).
+    /// size in bytes (0 is rounded up to 16 so that every binding is valid). A usage with
+    /// eShaderDeviceAddress needs a device with VulkanDevice::info().bufferDeviceAddress.
     GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlags usage);
 
     vk::Buffer buffer() const { return *buffer_; }
@@ -20,6 +21,9 @@ public:
     void upload(const void* data, std::size_t bytes);
     /// Copy `bytes` bytes from the buffer (offset 0) to host memory.
     void download(void* dst, std::size_t bytes);
+
+    /// The buffer's device address (usage eShaderDeviceAddress only).
+    vk::DeviceAddress deviceAddress() const;
 
     /// A view of the buffer as a uniform texel buffer, by default R32G32B32A32_UINT (usamplerBuffer).
     vk::raii::BufferView texelView(vk::Format format = vk::Format::eR32G32B32A32Uint) const;

@@ -19,6 +19,10 @@ VulkanDevice::VulkanDevice(VulkanInstance& instance, const std::string& selector
     vk::DeviceCreateInfo dci{};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
+    // Buffer device addresses where the device has them (used by the BVH layout micro-benchmark).
+    vk::PhysicalDeviceVulkan12Features v12{};
+    v12.bufferDeviceAddress = VK_TRUE;
+    if (info_.bufferDeviceAddress) dci.pNext = &v12;
     device_ = vk::raii::Device(*physical_, dci);
     queue_ = device_.getQueue(*info_.computeQueueFamily, 0);
 

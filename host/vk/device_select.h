@@ -23,6 +23,7 @@ struct DeviceInfo {
     std::uint32_t maxUniformBufferRange = 0;
     std::uint32_t maxPushConstantsSize = 0;
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer
+    bool bufferDeviceAddress = false;  ///< VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (optional)
 };
 
 /// Empty if the device can run vkpath, else the reason it cannot (one short phrase).

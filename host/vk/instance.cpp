@@ -46,6 +46,8 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
         const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
         d.driverName = drv.driverName.data();
         d.driverInfo = drv.driverInfo.data();
+        auto features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features>();
+        d.bufferDeviceAddress = features.get<vk::PhysicalDeviceVulkan12Features>().bufferDeviceAddress;
     }
     const auto families = pd.getQueueFamilyProperties();
     for (std::uint32_t i = 0; i < families.size(); ++i) {

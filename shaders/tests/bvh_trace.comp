@@ -6,7 +6,9 @@
 //   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (FlatBvh::nodes, 4 texels each)
 //   binding 2 (usamplerBuffer RGBA32UI): primitives (FlatBvh::prims, 3 texels each)
 //   With -DVKP_FETCH_SSBO (a bench variant, tests/bench/bench_bvh_layout.cpp) bindings 1 and 2
-//   are read-only storage buffers of uvec4 holding the same data. With -DVKP_BVH_WIDE binding 1
+//   are read-only storage buffers of uvec4 holding the same data. With -DVKP_FETCH_BDA the same
+//   data is read through buffer device addresses (GL_EXT_buffer_reference) given as push
+//   constants: uvec2 node address, uvec2 primitive address. With -DVKP_BVH_WIDE binding 1
 //   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse_wide.glsl.
 //   binding 3 (SSBO, written): per ray a uvec4:
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
@@ -22,7 +24,14 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Rays { vec4 rays[]; };
 layout(std430, binding = 3) writeonly buffer Results { uvec4 results[]; };
 
-#ifdef VKP_FETCH_SSBO
+#if defined(VKP_FETCH_BDA)
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Uvec4Data { uvec4 texel[]; };
+layout(push_constant) uniform DataAddresses { uvec2 nodes; uvec2 prims; } addresses;
+#define VKP_NODE_TEXEL(b) Uvec4Data(addresses.nodes).texel[b]
+#define VKP_PRIM_TEXEL(b) Uvec4Data(addresses.prims).texel[b]
+#elif defined(VKP_FETCH_SSBO)
 layout(std430, binding = 1) readonly buffer NodeData { uvec4 nodeData[]; };
 layout(std430, binding = 2) readonly buffer PrimData { uvec4 primData[]; };
 #define VKP_NODE_TEXEL(b) nodeData[b]

@@ -1,7 +1,9 @@
 // Micro-benchmark of the device data layout (issue 3): the BVH traversal kernel
 // (shaders/tests/bvh_trace.comp + lib/traverse.glsl) run in one process on the same BVH and the
 // same rays, with nodes and primitives fetched from texel buffers (the kernels' layout) and from
-// storage buffers (the same source compiled with -DVKP_FETCH_SSBO), and the 4-wide node layout
+// storage buffers (the same source compiled with -DVKP_FETCH_SSBO), through buffer device addresses
+// (-DVKP_FETCH_BDA: plain pointer loads, no descriptor; binary and 4-wide nodes; skipped on a device
+// without bufferDeviceAddress), and the 4-wide node layout
 // (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and two traversal
 // variants of it: children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED) and inner
 // children culled again against the hit found in the node's leaves (-DVKP_WIDE_RECULL). Runs are interleaved
@@ -28,8 +30,10 @@
 #include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"
 #include "bvh_trace.spv.h"
+#include "bvh_trace_bda.spv.h"
 #include "bvh_trace_ssbo.spv.h"
 #include "bvh_trace_wide.spv.h"
+#include "bvh_trace_wide_bda.spv.h"
 #include "bvh_trace_wide_recull.spv.h"
 #include "bvh_trace_wide_unordered.spv.h"
 #include "gpu_env.h"
@@ -57,6 +61,7 @@ struct Variant {
     std::span<const std::uint32_t> spirv;
     vk::DescriptorType dataType;  ///< descriptor type of bindings 1 and 2
     bool wide = false;            ///< nodes in the 4-wide layout (GpuWideNode)
+    bool bda = false;             ///< nodes and primitives read through buffer device addresses (push constants)
 };
 
 /// Buffers of one scene, bound to one pipeline per variant.
@@ -70,9 +75,9 @@ struct LayoutBench {
     LayoutBench(VulkanDevice& d, const FlatBvh& bvh, const std::vector<gpu::GpuWideNode>& wide, const std::vector<Ray>& rs,
                 const std::vector<Variant>& variants)
         : dev(d), rayCount(rs.size()), rays(d, rs.size() * 32, vk::BufferUsageFlagBits::eStorageBuffer),
-          nodes(d, bvh.nodes.size() * sizeof(gpu::GpuNode), usage()),
-          wideNodes(d, wide.size() * sizeof(gpu::GpuWideNode), usage()),
-          prims(d, bvh.prims.size() * sizeof(gpu::GpuPrim), usage()),
+          nodes(d, bvh.nodes.size() * sizeof(gpu::GpuNode), usage(d)),
+          wideNodes(d, wide.size() * sizeof(gpu::GpuWideNode), usage(d)),
+          prims(d, bvh.prims.size() * sizeof(gpu::GpuPrim), usage(d)),
           out(d, rs.size() * sizeof(glm::uvec4), vk::BufferUsageFlagBits::eStorageBuffer) {
         std::vector<glm::vec4> data;
         for (const Ray& r : rs) {
@@ -90,6 +95,7 @@ struct LayoutBench {
             ComputePipelineDesc desc;
             desc.spirv = v.spirv;
             desc.bindings = {vk::DescriptorType::eStorageBuffer, v.dataType, v.dataType, vk::DescriptorType::eStorageBuffer};
+            desc.pushConstantBytes = v.bda ? sizeof(BdaPush) : 0;
             auto p = std::make_unique<ComputePipeline>(dev, desc);
             p->bindBuffer(0, rays.buffer());
             if (v.dataType == vk::DescriptorType::eUniformTexelBuffer) {
@@ -101,17 +107,30 @@ struct LayoutBench {
             }
             p->bindBuffer(3, out.buffer());
             pipes.push_back(std::move(p));
+            bda.push_back(v.bda);
+            push.push_back(BdaPush{v.bda ? (v.wide ? wideNodes.deviceAddress() : nodes.deviceAddress()) : 0,
+                                   v.bda ? prims.deviceAddress() : 0});
         }
     }
-    static vk::BufferUsageFlags usage() {
-        return vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eStorageBuffer;
+    /// The push constants of a BDA variant: node and primitive addresses (uvec2 each in the shader).
+    struct BdaPush {
+        std::uint64_t nodes, prims;
+    };
+    std::vector<bool> bda;
+    std::vector<BdaPush> push;
+    static vk::BufferUsageFlags usage(VulkanDevice& d) {
+        vk::BufferUsageFlags u = vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eStorageBuffer;
+        if (d.info().bufferDeviceAddress) u |= vk::BufferUsageFlagBits::eShaderDeviceAddress;
+        return u;
     }
     /// Runs variant v once; returns {wall seconds, CPU seconds} and the results in `res`.
     std::pair<double, double> run(std::size_t v, std::vector<glm::uvec4>& res) {
         const auto groups = std::uint32_t((rayCount + 63) / 64);
         const auto t0 = std::chrono::steady_clock::now();
         const double c0 = cpuSeconds();
-        dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipes[v]->recordDispatch(cmd, groups, 1, nullptr, 0); });
+        dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) {
+            pipes[v]->recordDispatch(cmd, groups, 1, bda[v] ? &push[v] : nullptr, bda[v] ? sizeof(BdaPush) : 0);
+        });
         const double c1 = cpuSeconds();
         const auto t1 = std::chrono::steady_clock::now();
         res.resize(rayCount);
@@ -167,7 +186,7 @@ double median(std::vector<double> v) {
 }
 
 void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
-    const std::vector<Variant> variants = {
+    std::vector<Variant> variants = {
         {"texel", std::span<const std::uint32_t>(kBvhTraceSpv, std::size(kBvhTraceSpv)), vk::DescriptorType::eUniformTexelBuffer},
         {"ssbo", std::span<const std::uint32_t>(kBvhTraceSsboSpv, std::size(kBvhTraceSsboSpv)), vk::DescriptorType::eStorageBuffer},
         {"wide4 texel", std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)),
@@ -177,6 +196,14 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
         {"wide4 recull", std::span<const std::uint32_t>(kBvhTraceWideRecullSpv, std::size(kBvhTraceWideRecullSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true},
     };
+    if (dev.info().bufferDeviceAddress) {
+        variants.push_back({"bda", std::span<const std::uint32_t>(kBvhTraceBdaSpv, std::size(kBvhTraceBdaSpv)),
+                            vk::DescriptorType::eUniformTexelBuffer, false, true});
+        variants.push_back({"wide4 bda", std::span<const std::uint32_t>(kBvhTraceWideBdaSpv, std::size(kBvhTraceWideBdaSpv)),
+                            vk::DescriptorType::eUniformTexelBuffer, true, true});
+    } else {
+        std::printf("%s: the device has no bufferDeviceAddress: the bda variants are not run\n", dev.info().name.c_str());
+    }
     const FlatBvh bvh = buildFlatBvh(scene);
     const std::vector<gpu::GpuWideNode> wide = buildWideNodes(bvh);
     const std::vector<Ray> rays = incoherentRays(scene, envCount("VKP_BENCH_RAYS", 131072), 17);
