@@ -14,7 +14,8 @@
 // Every sample's random numbers depend only on (pixel, sample index, seed), and each sample is added
 // to the running sums in sample order, so any split of samples over dispatches gives the same bits.
 #extension GL_GOOGLE_include_directive : require
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+// Workgroup size: 8x8 by default, any other from specialization constants 19, 20 (`--workgroup`).
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = 19, local_size_y_id = 20) in;
 
 #include "lib/bindings.glsl"
 #include "shared/intersect.h"
@@ -229,7 +230,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
 
 void main() {
     // Scrambled tile order: lavapipe hands each thread a contiguous run of workgroups, so a
-    // permutation that spreads each run over the image balances cheap and expensive regions.
+    // permutation that spreads each run over the image balances cheap and expensive regions
+    // (frame.tiles.z = 1: row order, `--tile-order linear`).
     uint width = frame.size.x;
     bool adaptive = push.adaptive.x != 0u;
     uvec2 pix;
@@ -237,14 +239,14 @@ void main() {
     if (!adaptive) {
         uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
         uint tile = (group * frame.tiles.z) % frame.tiles.y;  // host keeps the product below 2^32
-        pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * 8u + gl_LocalInvocationID.xy;
+        pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
         if (pix.x >= width || pix.y >= frame.size.y) return;
         pixel = pix.y * width + pix.x;
     } else {
         // Only the pixels still active, packed: no lane idles on a converged pixel.
         uint group = gl_WorkGroupID.y * push.adaptive.w + gl_WorkGroupID.x;
         if (group >= push.adaptive.y) return;
-        uint slot = ((group * push.adaptive.z) % push.adaptive.y) * 64u + gl_LocalInvocationIndex;
+        uint slot = ((group * push.adaptive.z) % push.adaptive.y) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
         if (slot >= push.adaptive.x) return;
         pixel = activePixels[slot];
         pix = uvec2(pixel % width, pixel / width);

@@ -47,6 +47,8 @@ render options:
   --sequence Q            sobol (default: Owen-scrambled Sobol' points) | random (independent numbers)
   --light-pick P          power (default: emitters in proportion to their power) | uniform
   --light-sampling L      solid-angle (default for quads/triangles) | area (the book's)
+  --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
+  --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full
   --device SEL            device index or name substring (default: the most capable)
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
@@ -126,6 +128,18 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 const std::string s = value(f);
                 if (!parseLightSampling(s, a.lightSampling))
                     usage("--light-sampling must be solid-angle or area, got '" + s + "'");
+            } else if (f == "--workgroup") {
+                const std::string s = value(f);
+                const std::size_t x = s.find('x');
+                if (x == std::string::npos) usage("--workgroup wants WxH, e.g. 16x8, got '" + s + "'");
+                a.workgroupX = parseUint(f, s.substr(0, x), 1, 64);
+                a.workgroupY = parseUint(f, s.substr(x + 1), 1, 64);
+                if (a.workgroupX * a.workgroupY > 1024) usage("--workgroup: W*H must be at most 1024, got '" + s + "'");
+            } else if (f == "--tile-order") {
+                const std::string s = value(f);
+                if (s == "linear") a.linearTiles = true;
+                else if (s == "scrambled") a.linearTiles = false;
+                else usage("--tile-order must be scrambled or linear, got '" + s + "'");
             } else if (f == "--variant") {
                 const std::string v = value(f);
                 if (v == "full") a.fullVariant = true;

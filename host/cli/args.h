@@ -24,6 +24,8 @@ struct CliArgs {
     Sequence sequence = Sequence::Sobol;         // --sequence random|sobol
     LightPick lightPick = LightPick::Power;      // --light-pick power|uniform
     LightSampling lightSampling = LightSampling::SolidAngle;  // --light-sampling solid-angle|area
+    std::uint32_t workgroupX = 8, workgroupY = 8;  // --workgroup WxH
+    bool linearTiles = false;                      // --tile-order linear
     bool fullVariant = false;                    // --variant full
     std::string device;                          // --device N | NAME-SUBSTRING
     bool validate = false;

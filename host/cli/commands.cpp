@@ -88,6 +88,9 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     ro.sequence = a.sequence;
     ro.lightPick = a.lightPick;
     ro.lightSampling = a.lightSampling;
+    ro.workgroupX = a.workgroupX;
+    ro.workgroupY = a.workgroupY;
+    ro.linearTiles = a.linearTiles;
     ro.fullVariant = a.fullVariant;
     ro.samplesPerDispatch = a.samplesPerDispatch;
     ro.adaptiveThreshold = a.adaptiveThreshold;
@@ -148,6 +151,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.sequence = sequenceName(a.sequence);
         st.lightPick = lightPickName(a.lightPick);
         st.lightSampling = lightSamplingName(a.lightSampling);
+        st.workgroup = std::to_string(a.workgroupX) + "x" + std::to_string(a.workgroupY);
+        st.tileOrder = a.linearTiles ? "linear" : "scrambled";
         st.variant = renderer.features().name();
         st.fullVariant = a.fullVariant;
         st.width = scene.camera.width;

@@ -53,7 +53,8 @@ bool parseLightSampling(const std::string& name, LightSampling& out) {
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling == LightSampling::SolidAngle};
+            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling == LightSampling::SolidAngle,
+            0u, workgroupX, workgroupY};
 }
 
 std::string Features::name() const {

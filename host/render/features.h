@@ -53,8 +53,9 @@ struct Features {
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::SolidAngle;
+    std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..17, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// Values for constant_id 0..20 (18: not used by this kernel; 19, 20: workgroup size), in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
     /// lib/alpha.glsl).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".

@@ -17,8 +17,10 @@ void packCamera(const Camera& cam, gpu::GpuFrame& frame);
 std::uint32_t tileStride(std::uint32_t n);
 
 /// Everything in GpuFrame for a render of scene at its (possibly overridden) settings; `pick`
-/// decides the environment's share of next-event estimation (envPickProbability).
-gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power);
+/// decides the environment's share of next-event estimation (envPickProbability); tiles of
+/// `workgroup` pixels, visited in scrambled order (stride tileStride) or row by row (`linearTiles`).
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power, glm::uvec2 workgroup = glm::uvec2(8, 8),
+                        bool linearTiles = false);
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
 

@@ -99,6 +99,16 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       adaptiveMinSpp_(options.adaptiveMinSpp) {
     features_.sequence = options.sequence;
     features_.lightSampling = options.lightSampling;
+    features_.workgroupX = options.workgroupX;
+    features_.workgroupY = options.workgroupY;
+    const DeviceInfo& limits = device.info();
+    if (options.workgroupX == 0 || options.workgroupY == 0 || options.workgroupX > limits.maxComputeWorkGroupSize[0] ||
+        options.workgroupY > limits.maxComputeWorkGroupSize[1] ||
+        options.workgroupX * options.workgroupY > limits.maxComputeWorkGroupInvocations)
+        throw VulkanError("workgroup " + std::to_string(options.workgroupX) + "x" + std::to_string(options.workgroupY) +
+                          " is beyond this device's limits (" + std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
+                          std::to_string(limits.maxComputeWorkGroupSize[1]) + ", " +
+                          std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations)");
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     // The kernel traverses the 4-wide layout (lib/traverse.glsl): FlatBvh::wideNodes, or collapsed here
     // for a FlatBvh that came from flattenBvh alone.
@@ -125,7 +135,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
 
-    gpu::GpuFrame frame = packFrame(scene, options.lightPick);
+    gpu::GpuFrame frame = packFrame(scene, options.lightPick, glm::uvec2(options.workgroupX, options.workgroupY), options.linearTiles);
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
     std::vector<glm::vec4> materialTexels;
     for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
@@ -231,8 +241,9 @@ void Renderer::addSamples(std::uint32_t count) {
 }
 
 void Renderer::submitSamples(std::uint32_t count) {
-    // With adaptive sampling: 1D list of the active pixels, 64 per workgroup, slots scrambled.
-    const std::uint32_t groups = (active_ + 63) / 64;
+    // With adaptive sampling: 1D list of the active pixels, one per invocation, slots scrambled.
+    const std::uint32_t perGroup = features_.workgroupX * features_.workgroupY;
+    const std::uint32_t groups = (active_ + perGroup - 1) / perGroup;
     const std::uint32_t groupsX = std::min<std::uint32_t>(groups, 4096);
     const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
     const glm::uvec4 adaptivePush = adaptive() ? glm::uvec4(active_, groups, tileStride(groups), groupsX) : glm::uvec4(0);
@@ -251,7 +262,8 @@ void Renderer::submitSamples(std::uint32_t count) {
                 if (adaptive())
                     impl_->pipeline->recordDispatch(cmd, groupsX, groupsY, &push, sizeof(push));
                 else
-                    impl_->pipeline->recordDispatch8x8(cmd, width_, height_, &push, sizeof(push));
+                    impl_->pipeline->recordDispatch(cmd, (width_ + features_.workgroupX - 1) / features_.workgroupX,
+                                                    (height_ + features_.workgroupY - 1) / features_.workgroupY, &push, sizeof(push));
             }
         });
     } catch (const vk::SystemError& e) {

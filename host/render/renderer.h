@@ -20,6 +20,11 @@ struct RendererOptions {
     bool fullVariant = false;              ///< compile every feature in (`--variant full`)
     LightPick lightPick = LightPick::Power;  ///< how NEE picks an emitter (`--light-pick`)
     LightSampling lightSampling = LightSampling::SolidAngle;  ///< NEE on quads/triangles (`--light-sampling`)
+    /// Workgroup size of the kernel (x * y invocations, each one pixel) and the order its tiles are
+    /// visited in: scrambled (default; balances lavapipe's threads) or row by row (`--tile-order
+    /// linear`). Neither changes the image, only the speed.
+    std::uint32_t workgroupX = 8, workgroupY = 8;
+    bool linearTiles = false;
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;

@@ -70,6 +70,8 @@ std::string runStatsJson(const RunStats& s) {
     w.str("sequence", s.sequence);
     w.str("light_pick", s.lightPick);
     w.str("light_sampling", s.lightSampling);
+    w.str("workgroup", s.workgroup);
+    w.str("tile_order", s.tileOrder);
     w.str("variant", s.variant);
     w.raw("variant_full", s.fullVariant ? "true" : "false");
     w.raw("samples_per_dispatch", num(std::uint64_t(s.samplesPerDispatch)));

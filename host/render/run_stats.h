@@ -17,6 +17,8 @@ struct RunStats {
     std::string sequence;  ///< random | sobol (--sequence)
     std::string lightPick = "power";             ///< power | uniform (--light-pick)
     std::string lightSampling = "solid-angle";   ///< solid-angle | area (--light-sampling)
+    std::string workgroup = "8x8";               ///< --workgroup
+    std::string tileOrder = "scrambled";         ///< scrambled | linear (--tile-order)
     std::string variant;   ///< Features::name() of the pipeline
     bool fullVariant = false;
     std::uint32_t width = 0, height = 0, maxDepth = 0, seed = 0, samplesPerDispatch = 1;

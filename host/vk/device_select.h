@@ -22,6 +22,8 @@ struct DeviceInfo {
     std::uint32_t maxTexelBufferElements = 0;
     std::uint32_t maxUniformBufferRange = 0;
     std::uint32_t maxPushConstantsSize = 0;
+    std::uint32_t maxComputeWorkGroupInvocations = 0;
+    std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};  ///< x, y
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer
     bool bufferDeviceAddress = false;  ///< VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (optional)
 };

@@ -41,6 +41,9 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.maxUniformBufferRange = props.limits.maxUniformBufferRange;
     d.maxPushConstantsSize = props.limits.maxPushConstantsSize;
+    d.maxComputeWorkGroupInvocations = props.limits.maxComputeWorkGroupInvocations;
+    d.maxComputeWorkGroupSize[0] = props.limits.maxComputeWorkGroupSize[0];
+    d.maxComputeWorkGroupSize[1] = props.limits.maxComputeWorkGroupSize[1];
     if (props.apiVersion >= VK_API_VERSION_1_2) {
         auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
         const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();

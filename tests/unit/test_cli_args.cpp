@@ -78,6 +78,22 @@ TEST(CliArgs, LightPickAndSampling) {
               std::string::npos);
 }
 
+TEST(CliArgs, WorkgroupAndTileOrder) {
+    const CliArgs d = parseArgs({"render", "s.json"});
+    EXPECT_EQ(d.workgroupX, 8u);
+    EXPECT_EQ(d.workgroupY, 8u);
+    EXPECT_FALSE(d.linearTiles);
+    const CliArgs a = parseArgs({"render", "s.json", "--workgroup", "16x4", "--tile-order", "linear"});
+    EXPECT_EQ(a.workgroupX, 16u);
+    EXPECT_EQ(a.workgroupY, 4u);
+    EXPECT_TRUE(a.linearTiles);
+    EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "16"}).find("--workgroup wants WxH"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "0x8"}).find("--workgroup"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "64x32"}).find("at most 1024"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--tile-order", "hilbert"}).find("--tile-order must be scrambled or linear"),
+              std::string::npos);
+}
+
 TEST(CliArgs, UsageErrors) {
     EXPECT_NE(errorOf({"paint"}).find("unknown command 'paint'"), std::string::npos);
     EXPECT_NE(errorOf({"render"}).find("needs a scene file"), std::string::npos);
