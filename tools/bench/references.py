@@ -76,9 +76,20 @@ def ensure_reference(vk, scene, name, width, height, sampler, cache_dir, max_flo
         log("  reference: cached floor %.3g > %.3g: making a bigger one" % (meta["floor_relmse"], max_floor))
     os.makedirs(d, exist_ok=True)
     pixels = width * height
-    # A pilot (two small halves) measures the noise per spp and the rate.
-    a, b, secs, rate = _render_halves(vk, scene, os.path.join(d, "pilot"), width, height, sampler, pilot_spp, env)
-    spp_total, floor_rel = 2 * pilot_spp, metrics.noise_floor(a, b)[1]
+    kept = _kept_halves(d, width, height, sampler)
+    if kept is not None:
+        # Halves of an earlier attempt that was refused (or made under another --max-floor): used
+        # again, as they are if their floor now passes, else as the pilot of a bigger attempt.
+        a, b, half_spp, secs, rate = kept
+        spp_total, (floor_mse, floor_rel) = 2 * half_spp, metrics.noise_floor(a, b)
+        log("  reference: kept halves of %d spp each, floor %.3g" % (half_spp, floor_rel))
+        if floor_rel <= max_floor:
+            return _write_reference(d, scene, vk, width, height, sampler, a, b, spp_total, floor_mse, floor_rel,
+                                    max_floor, secs, log)
+    else:
+        # A pilot (two small halves) measures the noise per spp and the rate.
+        a, b, secs, rate = _render_halves(vk, scene, os.path.join(d, "pilot"), width, height, sampler, pilot_spp, env)
+        spp_total, floor_rel = 2 * pilot_spp, metrics.noise_floor(a, b)[1]
     spent = secs
     for attempt in range(3):  # the pilot underestimates scenes with rare bright paths (caustics)
         need = metrics.needed_total_spp(floor_rel, spp_total, 0.5 * max_floor)  # a margin of 2
@@ -100,6 +111,33 @@ def ensure_reference(vk, scene, name, width, height, sampler, cache_dir, max_flo
     else:
         raise ReferenceRefused("%s: reference floor %.3g > %.3g after %d spp: refused" %
                                (name, floor_rel, max_floor, spp_total))
+    return _write_reference(d, scene, vk, width, height, sampler, a, b, spp_total, floor_mse, floor_rel, max_floor,
+                            spent, log)
+
+
+def _kept_halves(d, width, height, sampler):
+    """(A, B, spp per half, seconds, samples/s) of half-a/half-b left in d by an earlier attempt, if
+    both exist, match the size, sampler and seeds, and have the same spp; else None."""
+    try:
+        stats = []
+        for tag, seed in zip("ab", SEEDS):
+            with open(os.path.join(d, "half-%s.json" % tag)) as f:
+                st = json.load(f)
+            if (st["width"], st["height"], st["sampler"], st["seed"]) != (width, height, sampler, seed):
+                return None
+            stats.append(st)
+        if stats[0]["spp"] != stats[1]["spp"] or any(st["nonfinite_samples"] for st in stats):
+            return None
+        a, b = (pfm.read_pfm(os.path.join(d, "half-%s.pfm" % tag)) for tag in "ab")
+    except (OSError, ValueError, KeyError):
+        return None
+    rate = min(st["samples_per_second_steady"] or st["samples_per_second"] for st in stats)
+    return a, b, stats[0]["spp"], sum(st["seconds_total"] for st in stats), rate
+
+
+def _write_reference(d, scene, vk, width, height, sampler, a, b, spp_total, floor_mse, floor_rel, max_floor, spent, log):
+    ref_path = os.path.join(d, "ref.pfm")
+    meta_path = os.path.join(d, "meta.json")
     pfm.write_pfm(ref_path, 0.5 * (a.astype(np.float64) + b.astype(np.float64)))
     shutil.rmtree(os.path.join(d, "pilot"), ignore_errors=True)
     meta = {
