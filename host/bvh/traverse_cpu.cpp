@@ -54,7 +54,10 @@ TraceResult traverse(std::span<const GpuNode> nodes, std::span<const GpuPrim> pr
             passes += 1u;
             const uint p = (i < nl) ? il + i : ir + (i - nl);
             vec2 ab;
-            const float th = intersectPrim(at(prims, p, "primitive"), o, d, tmin, t, ab);
+            const GpuPrim& pr = at(prims, p, "primitive");
+            if (primKind(pr) == PRIM_INSTANCE)
+                throw std::invalid_argument("BVH traversal: the binary layout does not traverse instances (the 4-wide one does)");
+            const float th = intersectPrim(pr, o, d, tmin, t, ab);
             if (th < t) {
                 t = th;
                 r.prim = p;

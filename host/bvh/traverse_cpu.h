@@ -27,14 +27,16 @@ struct TraceResult {
     bool hit = false;
     float t = gpu::VKP_FAR;                 ///< hit distance (world units), VKP_FAR on a miss
     std::uint32_t prim = gpu::GPU_NODE_EMPTY;  ///< index into FlatBvh::prims
-    glm::vec2 ab{0.0f};                     ///< surface parameters (see intersectPrim)
+    glm::vec2 ab{0.0f};                     ///< surface parameters (see intersectPrim; object space for an instance's triangle)
+    std::uint32_t instance = gpu::GPU_NO_INSTANCE;  ///< FlatBvh::instances index of the hit's instance (4-wide traversal)
     std::uint32_t passes = 0;               ///< passes counted so far (the caller's start value +)
     std::uint32_t maxPasses = kTraceMaxPasses;
     bool cutShort() const { return passes >= maxPasses; }
 };
 
 /// Closest hit with t in (tmin, tmax) of the ray o + t d (d unit length, world units) against the
-/// nodes and prims of a FlatBvh. A ray with a NaN component, or !(tmin < tmax), misses at no cost.
+/// nodes and prims of a FlatBvh. Instances (two-level BVH) are traversed by the 4-wide layout only:
+/// a PRIM_INSTANCE primitive here throws std::invalid_argument. A ray with a NaN component, or !(tmin < tmax), misses at no cost.
 /// `passes` is the count the trace starts from (a path's previous traces), as in the GLSL.
 /// Throws std::out_of_range if the nodes refer outside the arrays (a malformed BVH).
 TraceResult traceClosestCpu(std::span<const gpu::GpuNode> nodes, std::span<const gpu::GpuPrim> prims,

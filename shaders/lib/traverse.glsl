@@ -147,5 +147,15 @@ bool traceAny(vec3 o, vec3 d, float tmin, float tmax, inout uint passes) {
     return vkpTraverse(true, o, d, tmin, tmax, primIndex, t, ab, passes);
 }
 
+/// The binary layout does not traverse instances (two-level BVH, shared/instance.h): the renderer
+/// always uses the 4-wide layout, and this traversal is kept for comparison. A PRIM_INSTANCE
+/// primitive has NaN coordinates and is never hit here; its CPU twin (host/bvh/traverse_cpu.cpp)
+/// throws on one. This wrapper only keeps the interface of lib/traverse_wide.glsl.
+bool traceClosestInstance(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
+                          out vec2 ab, out uint inst, inout uint passes) {
+    inst = 0xffffffffu;  // GPU_NO_INSTANCE
+    return vkpTraverse(false, o, d, tmin, tmax, primIndex, t, ab, passes);
+}
+
 #endif  // VKP_BVH_WIDE
 #endif

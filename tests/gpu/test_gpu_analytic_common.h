@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bvh/flatten.h"
+#include "bvh/two_level.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -181,7 +182,7 @@ inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sample
                                    std::uint32_t samplesPerDispatch = 4) {
     SceneRender r;
     r.scene = scene;
-    r.bvh = buildFlatBvh(r.scene);
+    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
     RendererOptions o;
     o.sampler = sampler;
     o.samplesPerDispatch = samplesPerDispatch;
