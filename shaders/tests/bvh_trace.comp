@@ -12,7 +12,7 @@
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
 //       its passes << 1 (starting from 0)
-//   With -DVKP_INSTANCES (4-wide only; two-level BVH, shared/instance.h): binding 4 (usamplerBuffer
+//   With -DVKP_INSTANCES (either layout; two-level BVH, shared/instance.h): binding 4 (usamplerBuffer
 //   RGBA32UI) holds the GpuInstances, and binding 5 (SSBO, written) per ray the instance of the
 //   closest hit (GPU_NO_INSTANCE for a top-level primitive or a miss).
 #version 460
@@ -74,9 +74,6 @@ GpuPrim fetchPrim(uint i) {
 }
 
 #ifdef VKP_INSTANCES
-#ifndef VKP_BVH_WIDE
-#error "VKP_INSTANCES: only the 4-wide traversal traverses instances"
-#endif
 #include "shared/instance.h"
 layout(binding = 4) uniform usamplerBuffer instanceTexels;
 layout(std430, binding = 5) writeonly buffer InstanceResults { uint instanceResults[]; };

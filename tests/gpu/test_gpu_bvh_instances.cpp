@@ -1,19 +1,34 @@
-// Instances through the device's 4-wide traversal (shaders/lib/traverse_wide.glsl with
-// VKP_HAS_INSTANCES, run by shaders/tests/bvh_trace.comp compiled with -DVKP_INSTANCES) against the
-// CPU twin (host/bvh/traverse_wide_cpu) on the same two-level BVH and rays: the same closest hit
-// (t bit-exact, primitive, instance), any-hit answer and pass counts. The scene's instances
+// Instances through the device's traversals (shaders/lib/traverse_wide.glsl and the binary
+// lib/traverse.glsl with VKP_HAS_INSTANCES, run by shaders/tests/bvh_trace.comp compiled with
+// -DVKP_INSTANCES) against their CPU twins (host/bvh/traverse_wide_cpu, traverse_cpu) on the same
+// two-level BVH and rays: the same closest hit (t bit-exact, primitive, instance), any-hit answer
+// and pass counts. The scene's instances
 // translate, rotate, scale non-uniformly and mirror two shared meshes (tests/support/instance_test_scenes.h).
 #include <gtest/gtest.h>
 
 #include "bvh/traverse_wide_cpu.h"
 #include "bvh/two_level.h"
 #include "bvh_trace_compare.h"
+#include "bvh_trace_instances.spv.h"
 #include "bvh_trace_wide_instances.spv.h"
 #include "gpu_env.h"
 #include "instance_test_scenes.h"
 
 namespace vkp::test {
 namespace {
+
+/// The binary layout: FlatBvh::nodes, traverse_cpu.h.
+BvhComparison compareInstancedBinary(VulkanDevice& dev, const Scene& scene, const std::vector<Ray>& rays) {
+    const FlatBvh bvh = buildTwoLevelBvh(scene);
+    return compareTraversal(
+        dev, std::span<const std::uint32_t>(kBvhTraceInstancesSpv, std::size(kBvhTraceInstancesSpv)), bvh.nodes.data(),
+        bvh.nodes.size() * sizeof(gpu::GpuNode), bvh.prims, rays,
+        [&](const Ray& r, bool any) {
+            return any ? traceAnyCpu(bvh.nodes, bvh.prims, bvh.instances, r.o, r.d, r.tmin, r.tmax)
+                       : traceClosestCpu(bvh.nodes, bvh.prims, bvh.instances, r.o, r.d, r.tmin, r.tmax);
+        },
+        "two-level binary BVH", bvh.instances);
+}
 
 BvhComparison compareInstanced(VulkanDevice& dev, const Scene& scene, const std::vector<Ray>& rays) {
     const FlatBvh bvh = buildTwoLevelBvh(scene);
@@ -55,6 +70,16 @@ TEST(GpuBvhInstances, AxisParallelAndNonFiniteRaysMatchCpu) {
     EXPECT_EQ(c.passDifferences, 0);
     EXPECT_GT(c.hits, 100);
     EXPECT_GT(c.instanceHits, 10);
+}
+
+TEST(GpuBvhInstances, BinaryLayoutHitsMatchCpuOnTheSameRays) {
+    VKP_REQUIRE_DEVICE(dev);
+    const Scene scene = instancedScene();
+    const BvhComparison c = compareInstancedBinary(dev, scene, randomRays(flattenedScene(scene).shapes, 20000, 72, 25.0f));
+    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_EQ(c.cutShort, 0);
+    EXPECT_GT(c.instanceHits, 4000);
 }
 
 }  // namespace
