@@ -12,6 +12,11 @@
 #include <map>
 #include <string>
 
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
 #include "test_paths.h"
@@ -100,6 +105,28 @@ TEST(GltfInstancing, PlacedInstancesAreTheFlattenedTriangles) {
 
 TEST(GltfInstancing, OffByDefaultInTheLibrary) {
     EXPECT_TRUE(loadSceneGltf(instancesFile()).instances.empty());
+}
+
+TEST(GltfInstancing, AnInstancePlacedBeyondFloatRangeIsOneErrorLine) {
+    // instances.gltf with the stretched blob's node scaled by 1e39: its placed box leaves float range.
+    std::ifstream in(instancesFile());
+    nlohmann::json doc = nlohmann::json::parse(in);
+    doc["nodes"][2]["scale"] = {1e39, 1e39, 1e39};
+    const std::filesystem::path file = test::scratchDir("gltf_instancing") / "huge.gltf";
+    std::ofstream(file) << doc.dump();
+    for (bool instancing : {true, false}) {
+        GltfOptions o;
+        o.instancing = instancing;
+        try {
+            loadSceneGltf(file, o);
+            ADD_FAILURE() << "no error with instancing " << instancing;
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+            if (instancing) EXPECT_NE(m.find("node 2 (\"blob stretched\")"), std::string::npos) << m;
+            EXPECT_NE(m.find("outside the range of 32-bit floats"), std::string::npos) << m;
+        }
+    }
 }
 
 }  // namespace
