@@ -99,18 +99,31 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     rays++;
     s.depth++;
     sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
-    bool hit = traceClosest(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, passes);
+    uint inst;
+    bool hit = traceClosestInstance(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, inst, passes);
     if (!hit) {
         s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);  // lib/environment.glsl
         return true;
     }
     GpuPrim p = fetchPrim(prim);
+    vec2 abAttr = ab;          // surface parameters of the stored triangle (its attribute record's order)
+    float extraOffset = 0.0f;  // an instance's transform rounding (shared/instance.h)
+    GpuPrim pObj = p;
+    GpuInstance ins;
+    bool instanced = HAS_INSTANCES && inst != GPU_NO_INSTANCE;
+    if (instanced) {
+        // An instance's triangle: shade it placed in the world, as the flattening loader places it.
+        ins = fetchInstance(inst);
+        p = instanceWorldPrim(ins, pObj);
+        ab = instanceWorldAb(ins, ab);
+    }
     vec3 x = primHitPoint(p, s.o, s.d, t, ab);  // from the primitive, not o + t d (shared/ray_offset.h)
     vec3 ng = primNormal(p, x);
+    if (instanced) extraOffset = instanceOffsetDistance(ins, pObj, abAttr, x, ng);
     bool frontFace = dot(s.d, ng) < 0.0f;
     vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
     GpuMaterial m = fetchMaterial(primMaterial(p));
-    vec3 nShade = surfaceAt(prim, p, ab, ns, s.d, primMaterial(p), m);  // textures, shading normal (lib/surface.glsl)
+    vec3 nShade = surfaceAt(prim, p, abAttr, ns, s.d, primMaterial(p), m, inst);  // textures, shading normal (lib/surface.glsl)
     uint mflags = floatBitsToUint(m.m0.w);
     uint mtype = mflags & 15u;
     vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
@@ -140,7 +153,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
         float uStrategy = sampleNext(s.smp);
         vec2 u2 = sampleNext2(s.smp);
-        vec3 xo = spawnRayOrigin(p, ab, x, ns);
+        vec3 xo = spawnRayOriginExtra(p, ab, x, ns, extraOffset);
         if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn())) {
             // Next-event estimation: the environment with probability pEnv (lib/environment.glsl),
             // else one emitter picked by power (probability (1 - pEnv) x its share), one point on
@@ -210,12 +223,12 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         newDir = scatterMetal(s.d, ns, m.m1.w, vec3(sampleNext(s.smp), sampleNext(s.smp), sampleNext(s.smp)), absorbed);
         if (absorbed) return true;
         s.throughput *= albedo;
-        s.o = spawnRayOrigin(p, ab, x, ns);
+        s.o = spawnRayOriginExtra(p, ab, x, ns, extraOffset);
     } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
         newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, sampleNext(s.smp));
-        s.o = spawnRayOrigin(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns);
+        s.o = spawnRayOriginExtra(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns, extraOffset);
     } else if (HAS_PBR && mtype == MAT_PBR) {
-        if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, newDir, rays, passes)) return true;
+        if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, extraOffset, newDir, rays, passes)) return true;
     }
     s.d = newDir;
 

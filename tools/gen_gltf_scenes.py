@@ -26,12 +26,22 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                an opaque quad behind a fully cut-out one
   emissive-texture.gltf        an emissiveTexture (tests/gpu/test_gpu_emissive_texture.cpp): a lamp
                                quad seen straight on, and a panel of the same material over a floor
+  instances.gltf               instancing (tests/gpu/test_gpu_instancing.cpp, test_gltf_loader.cpp):
+                               a lumpy blob with NORMALs used by 5 nodes (translated, rotated, a
+                               non-uniform scale, a mirror, a mirror inside a rotated parent), a
+                               glass tetrahedron used by 2 nodes (one mirrored), an emissive lamp
+                               used by 2 nodes (stays flattened), a floor and a light panel
 
 Deterministic: running it again writes byte-identical files.
 Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tools/)
        tools/gen_gltf_scenes.py --grid TRIANGLES OUT.glb
            a wavy height field of at least TRIANGLES triangles (indexed, uint32, POSITION + NORMAL,
            a camera and an emissive panel) for load-time and memory measurements; not committed.
+       tools/gen_gltf_scenes.py --instances COUNT TRIANGLES OUT.glb
+           COUNT nodes on a square grid sharing one lumpy blob of at least TRIANGLES triangles
+           (POSITION + NORMAL, uint32 indices), each turned, scaled and every third one mirrored,
+           on a floor under an emissive panel, with a camera: for the instancing measurements
+           (README "Instancing"); not committed.
 """
 import array
 import base64
@@ -464,6 +474,84 @@ def emissive_texture(out):
     g.write_gltf(out / "emissive-texture.gltf")
 
 
+def blob(rings=10, segments=16):
+    """A unit-radius-0.5 sphere with a lump towards +x (so a mirror shows): vertices and per-vertex
+    NORMALs (the sphere's: the shading normals need not be the lump's), counter-clockwise outside."""
+    pos, nrm = [], []
+    for j in range(rings + 1):
+        th = math.pi * j / rings
+        for i in range(segments + 1):
+            ph = 2 * math.pi * i / segments
+            d = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
+            r = 0.5 * (1 + 0.6 * max(0.0, d[0]) ** 2)
+            pos.append(tuple(round(r * c, 6) for c in d))
+            nrm.append(tuple(round(c, 6) for c in d))
+    idx = []
+    for j in range(rings):
+        for i in range(segments):
+            a, b = j * (segments + 1) + i, j * (segments + 1) + i + 1
+            c, e = (j + 1) * (segments + 1) + i + 1, (j + 1) * (segments + 1) + i
+            if j > 0:
+                idx += [a, b, e]
+            if j < rings - 1:
+                idx += [b, c, e]
+    return pos, nrm, idx
+
+
+def instances(out):
+    """Meshes used by several nodes (vkpath stores each once with --instancing auto)."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_emissive_strength"]
+    g.doc["materials"] = [
+        {"name": "clay", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.55, 0.35, 1], "metallicFactor": 0, "roughnessFactor": 0.45}},
+        {"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0, "roughnessFactor": 0},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}}},
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1], "metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
+        {"name": "light", "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}},
+        {"name": "lamp", "emissiveFactor": [1, 0.6, 0.3], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}},
+    ]
+    pos, nrm, idx = blob()
+    g.add("meshes", {"name": "blob", "primitives": [{
+        "attributes": {"POSITION": g.positions(pos), "NORMAL": g.accessor([c for n in nrm for c in n], FLOAT, "VEC3")},
+        "indices": g.accessor(idx, USHORT, "SCALAR"), "material": 0}]})
+    tet = [(0, 0.6, 0), (-0.35, 0, -0.25), (0.4, 0, -0.2), (0.05, 0, 0.4)]  # apex, base
+    g.add("meshes", {"name": "tetrahedron", "primitives": [{
+        "attributes": {"POSITION": g.positions(tet)},
+        "indices": g.accessor([0, 3, 2, 0, 2, 1, 0, 1, 3, 1, 2, 3], UBYTE, "SCALAR"), "material": 1}]})
+    floor = [(-4, 0, 3), (4, 0, 3), (4, 0, -4), (-4, 0, -4)]
+    g.add("meshes", {"name": "floor", "primitives": [{"attributes": {"POSITION": g.positions(floor)},
+                                                      "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR"), "material": 2}]})
+    panel = [(-1, 3, 1), (1, 3, 1), (1, 3, -1), (-1, 3, -1)]  # faces -y
+    g.add("meshes", {"name": "panel", "primitives": [{"attributes": {"POSITION": g.positions(panel)},
+                                                      "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR"), "material": 3}]})
+    lamp = [(-0.15, 0, 0), (0.15, 0, 0), (0.15, 0.3, 0), (-0.15, 0.3, 0)]  # faces +z
+    g.add("meshes", {"name": "lamp", "primitives": [{"attributes": {"POSITION": g.positions(lamp)},
+                                                     "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR"), "material": 4}]})
+    s30 = math.sin(math.radians(15))
+    g.doc["nodes"] = [
+        {"name": "blob plain", "mesh": 0, "translation": [-1.3, 0.55, 0]},
+        {"name": "blob rotated", "mesh": 0, "translation": [0, 0.55, 0], "rotation": [0, 0.7071067812, 0, 0.7071067812]},
+        {"name": "blob stretched", "mesh": 0, "translation": [1.35, 0.4, 0], "scale": [1.4, 0.6, 0.9]},
+        {"name": "blob mirrored", "mesh": 0, "translation": [-0.7, 0.55, 1.3], "scale": [-1, 1, 1]},
+        {"name": "tilted parent", "translation": [0.7, 0.6, 1.3], "rotation": [0, 0, s30, math.cos(math.radians(15))], "children": [5]},
+        {"name": "blob mirrored child", "mesh": 0, "scale": [0.8, -0.8, 0.8]},
+        {"name": "glass", "mesh": 1, "translation": [-0.5, 0, -1.3]},
+        {"name": "glass mirrored", "mesh": 1, "translation": [0.8, 0, -1.3], "scale": [1, 1, -1.3]},
+        {"name": "floor", "mesh": 2},
+        {"name": "panel", "mesh": 3},
+        {"name": "lamp left", "mesh": 4, "translation": [-2.5, 0, -1]},
+        {"name": "lamp right", "mesh": 4, "translation": [2.5, 0, -1]},
+        {"name": "camera", "camera": 0, "translation": [0, 3.0, 6.6], "rotation": [-0.2164396139, 0, 0, 0.9762960071]},  # 25 degrees down
+    ]
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.75, "aspectRatio": 1, "znear": 0.01}}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2, 3, 4, 6, 7, 8, 9, 10, 11, 12]}]
+    g.write_gltf(out / "instances.gltf")
+
+
 def grid(triangles, path):
     """A height field y = 0.05 sin(8x) cos(8z) on [-1,1]^2 with n x n quads, 2 n^2 >= triangles."""
     n = max(1, math.ceil(math.sqrt(triangles / 2)))
@@ -507,13 +595,81 @@ def grid(triangles, path):
     print("%s: %d triangles, %d vertices, %d bytes" % (path, 2 * n * n + 2, nv + 4, path.stat().st_size))
 
 
+def instanced_blobs(count, triangles, path):
+    """count instances of one blob of >= triangles triangles on a grid (see the usage above)."""
+    rings = max(4, math.ceil(math.sqrt(triangles / 4)))
+    segments = 2 * rings
+    pos, nrm = array.array("f"), array.array("f")
+    for j in range(rings + 1):
+        th = math.pi * j / rings
+        for i in range(segments + 1):
+            ph = 2 * math.pi * i / segments
+            d = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
+            r = 0.5 * (1 + 0.6 * max(0.0, d[0]) ** 2 + 0.03 * math.sin(9 * th) * math.cos(7 * ph))
+            pos.extend(r * c for c in d)
+            nrm.extend(d)
+    idx = array.array("I")
+    for j in range(rings):
+        for i in range(segments):
+            a, b = j * (segments + 1) + i, j * (segments + 1) + i + 1
+            c, e = (j + 1) * (segments + 1) + i + 1, (j + 1) * (segments + 1) + i
+            if j > 0:
+                idx.extend((a, b, e))
+            if j < rings - 1:
+                idx.extend((b, c, e))
+    if sys.byteorder != "little":
+        for arr in (pos, nrm, idx):
+            arr.byteswap()
+    g = Gltf()
+    nv = len(pos) // 3
+    p = g.add("accessors", {"bufferView": g.view(pos.tobytes()), "componentType": FLOAT, "type": "VEC3", "count": nv,
+                            "min": [-0.8, -0.52, -0.52], "max": [0.8, 0.52, 0.52]})
+    q = g.add("accessors", {"bufferView": g.view(nrm.tobytes()), "componentType": FLOAT, "type": "VEC3", "count": nv})
+    k = g.add("accessors", {"bufferView": g.view(idx.tobytes()), "componentType": UINT, "type": "SCALAR", "count": len(idx)})
+    g.doc["materials"] = [
+        {"name": "clay", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.55, 0.35, 1], "metallicFactor": 0, "roughnessFactor": 0.45}},
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1], "metallicFactor": 0}},
+        {"name": "light", "emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}}]
+    g.add("meshes", {"name": "blob", "primitives": [{"attributes": {"POSITION": p, "NORMAL": q}, "indices": k, "material": 0}]})
+    side = math.ceil(math.sqrt(count))
+    half = 0.75 * side
+    g.add("meshes", {"name": "floor", "primitives": [{"attributes": {"POSITION": g.positions(
+        [(-half - 1, 0, half + 1), (half + 1, 0, half + 1), (half + 1, 0, -half - 1), (-half - 1, 0, -half - 1)])},
+        "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR"), "material": 1}]})
+    h = 2.0 + side
+    g.add("meshes", {"name": "panel", "primitives": [{"attributes": {"POSITION": g.positions(
+        [(-half, h, half), (half, h, half), (half, h, -half), (-half, h, -half)])},
+        "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR"), "material": 2}]})
+    nodes = []
+    for n in range(count):
+        x, z = n % side, n // side
+        a = 0.37 * n  # turn about y
+        sc = 0.8 + 0.4 * ((n * 7919) % 13) / 12
+        sx = -sc if n % 3 == 2 else sc
+        nodes.append({"mesh": 0, "translation": [1.5 * x - 0.75 * (side - 1), 0.55 * sc, 1.5 * z - 0.75 * (side - 1)],
+                      "rotation": [0, math.sin(a / 2), 0, math.cos(a / 2)], "scale": [sx, sc, sc]})
+    nodes += [{"mesh": 1}, {"mesh": 2},
+              {"camera": 0, "translation": [0, 0.9 * side + 1.5, 1.2 * side + 2.5], "rotation": [-0.3007057995, 0, 0, 0.9537169507]}]  # 35 degrees down
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1, "znear": 0.01}}]
+    g.doc["nodes"] = nodes
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(nodes)))}]
+    g.write_glb(path)
+    print("%s: %d instances of %d triangles (%d drawn), %d bytes" % (path, count, len(idx) // 3, count * len(idx) // 3,
+                                                                     path.stat().st_size))
+
+
 def main():
     if len(sys.argv) == 4 and sys.argv[1] == "--grid":
         grid(int(sys.argv[2]), pathlib.Path(sys.argv[3]))
         return
+    if len(sys.argv) == 5 and sys.argv[1] == "--instances":
+        instanced_blobs(int(sys.argv[2]), int(sys.argv[3]), pathlib.Path(sys.argv[4]))
+        return
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
-    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture):
+    for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture,
+                  instances):
         write(out)
 
 

@@ -99,6 +99,14 @@ FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
         out.prims[i] = packShape(scene.shapes[s], lightPlusOne[s]);
     }
 
+    flattenNodes(tree, n, out);
+    out.stats.flattenMs = msSince(t0);
+    return out;
+}
+
+void flattenNodes(const BvhBuildTree& tree, std::size_t n, FlatBvh& out) {
+    if (tree.primIndices.size() != n || (n > 0) != !tree.nodes.empty())
+        throw std::invalid_argument("flattenNodes: the tree was not built over these primitives");
     BvhStats& st = out.stats;
     st.primCount = n;
     st.sahCost = sahCost(tree);
@@ -115,8 +123,7 @@ FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
         setEmpty(root.c, root.d);
         out.nodes.push_back(root);
         st.nodeCount = 1;
-        st.flattenMs = msSince(t0);
-        return out;
+        return;
     }
 
     // Depth-first, pre-order, left child first. Each entry: build node, flat parent, slot (0/1).
@@ -162,22 +169,31 @@ FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
             throw std::invalid_argument("flattenBvh: the tree has a cycle");
     }
     st.nodeCount = out.nodes.size();
-    st.flattenMs = msSince(t0);
-    return out;
 }
 
-FlatBvh buildFlatBvh(const Scene& scene, const BvhBuildOptions& options) {
-    for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-        const Shape& s = scene.shapes[i];
+const Shape* primShape(const Scene& scene, const FlatBvh& bvh, std::size_t i) {
+    const std::uint32_t s = bvh.primToShape.at(i);
+    const std::uint32_t mesh = bvh.primMesh.empty() ? 0u : bvh.primMesh.at(i);
+    if (mesh == 0) return s == FlatBvh::kNotAShape ? nullptr : &scene.shapes.at(s);
+    return &scene.meshes.at(mesh - 1).shapes.at(s);
+}
+
+void checkShapesFinite(const Scene& scene, std::span<const Shape> shapes, const std::string& what) {
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const Shape& s = shapes[i];
         bool ok = finite(s.p0) && std::isfinite(s.radius);
         if (s.type != ShapeType::Sphere) ok = ok && finite(s.p1) && finite(s.p2);
         // Corners/extents may still overflow to infinity (a quad at 3e38 with a large edge).
         Aabb box = shapeBounds(s);
         ok = ok && finite(box.lo) && finite(box.hi) && finite(0.5f * (box.lo + box.hi));
         if (!ok)
-            throw InputError(scene.path.string() + ": shape " + std::to_string(i) +
+            throw InputError(scene.path.string() + ": " + what + std::to_string(i) +
                              ": non-finite coordinates or radius");
     }
+}
+
+FlatBvh buildFlatBvh(const Scene& scene, const BvhBuildOptions& options) {
+    checkShapesFinite(scene, scene.shapes, "shape ");
     const auto t0 = std::chrono::steady_clock::now();
     BvhBuildTree tree = buildBvh(scene.shapes, options);
     const double buildMs = msSince(t0);

@@ -3,11 +3,14 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "bvh/build.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
+#include "shared/instance.h"
 #include "shared/wide_bvh.h"
 
 namespace vkp {
@@ -25,6 +28,9 @@ struct BvhStats {
     double flattenMs = 0.0;  ///< wall time of flattening and packing (milliseconds)
     double wideMs = 0.0;     ///< wall time of the 4-wide collapse and packing (milliseconds)
     std::size_t wideNodeCount = 0;  ///< GpuWideNodes of FlatBvh::wideNodes
+    /// Two-level BVH (host/bvh/two_level.h): instances, shared meshes, top-level primitives (the
+    /// scene's shapes plus one per instance); the counts above are then totals over both levels.
+    std::size_t instanceCount = 0, meshCount = 0, topPrimCount = 0;
 };
 
 /// A BVH in the GPU layout. nodes[0] is the root; inner children come after their parent
@@ -38,8 +44,19 @@ struct FlatBvh {
     /// The same tree collapsed to 4-wide nodes (shared/wide_bvh.h, host/bvh/wide_pack.h) over the
     /// same prims: what the kernels traverse. Filled by buildFlatBvh (empty after flattenBvh alone).
     std::vector<gpu::GpuWideNode> wideNodes;
+    /// Two-level BVH only (host/bvh/two_level.h): the instances that PRIM_INSTANCE primitives name,
+    /// and per primitive 0 (a top-level primitive: primToShape indexes Scene::shapes, or is
+    /// kNotAShape for an instance) or m + 1 (a triangle of Scene::meshes[m]: primToShape indexes its
+    /// shapes). primMesh is empty for a one-level BVH.
+    std::vector<gpu::GpuInstance> instances;
+    std::vector<std::uint32_t> primMesh;
+    static constexpr std::uint32_t kNotAShape = 0xffffffffu;
     BvhStats stats;
 };
+
+/// The shape behind primitive i of bvh (a Scene::shapes entry, or a triangle of an instanced mesh
+/// in object space), or nullptr for an instance primitive.
+const Shape* primShape(const Scene& scene, const FlatBvh& bvh, std::size_t i);
 
 /// Pack one shape: header = kind | material << 2 (p0.w bits), sphere radius in p1.w, triangle
 /// edges e1 = v1 - v0 and e2 = v2 - v0, p2.w = bits of lightPlusOne (light index + 1, 0 = none).
@@ -50,6 +67,15 @@ gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne);
 /// (GPU_NODE_EMPTY, inverted box). Throws InputError on a material index >= 2^30 or a light index
 /// that is not a shape; std::invalid_argument when the tree does not match the shapes.
 FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene);
+
+/// The node half of flattenBvh: out.nodes and out.stats (counts, depth, SAH cost) of `tree`, built
+/// over n primitives that out.prims holds (or will hold) in tree order. Throws std::invalid_argument
+/// when the tree does not match n.
+void flattenNodes(const BvhBuildTree& tree, std::size_t n, FlatBvh& out);
+
+/// Throws InputError "<file>: <what> <i>: non-finite coordinates or radius" for the first shape
+/// whose data or box is not finite.
+void checkShapesFinite(const Scene& scene, std::span<const Shape> shapes, const std::string& what);
 
 /// Build (binned SAH, buildBvh), flatten the scene's shapes and collapse the result to 4-wide
 /// nodes (wideNodes); fills stats including times.

@@ -1,4 +1,4 @@
-// CPU twin of shaders/lib/traverse.glsl (vkpTraverse): keep the two in step.
+// CPU twin of shaders/lib/traverse.glsl (vkpTraverse, vkpBinaryLoop*): keep the two in step.
 #include "bvh/traverse_cpu.h"
 
 #include <algorithm>
@@ -22,26 +22,28 @@ const T& at(std::span<const T> a, std::uint32_t i, const char* what) {
 
 vec3 xyz(const vec4& v) { return vec3(v.x, v.y, v.z); }
 
+struct Arrays {
+    std::span<const GpuNode> nodes;
+    std::span<const GpuPrim> prims;
+    std::span<const GpuInstance> instances;
+};
+
+/// One level's loop (the GLSL's vkpBinaryLoopTop / vkpBinaryLoopBottom): from node `root`, rays
+/// o + t d, t in (tmin, t). instId: GPU_NO_INSTANCE at the top level, else the instance whose bottom
+/// level this is (a PRIM_INSTANCE primitive met there is not descended into: its NaN coordinates miss).
 template <bool kAnyHit>
-TraceResult traverse(std::span<const GpuNode> nodes, std::span<const GpuPrim> prims, const vec3& o,
-                     const vec3& d, float tmin, float tmax, std::uint32_t passes,
-                     std::uint32_t maxPasses) {
-    TraceResult r;
-    r.passes = passes;
-    r.maxPasses = maxPasses;
-    const bool nanRay = glm::any(glm::isnan(o)) || glm::any(glm::isnan(d));
-    if (nanRay || !(tmin < tmax)) return r;
-    float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
+bool loop(const Arrays& a, std::uint32_t root, const vec3& o, const vec3& d, float tmin, float& t, TraceResult& r,
+          std::uint32_t instId, std::uint32_t& passes, std::uint32_t maxPasses) {
     const vec3 invD = safeInverse(d);
     std::uint32_t stack[kTraceStackSize];
     std::uint32_t sp = 0;
-    std::uint32_t node = 0;
+    std::uint32_t node = root;
     bool finished = false;
     bool overflow = false;
     bool found = false;
     while (passes < maxPasses) {
         passes += 2u;
-        const GpuNode& n = at(nodes, node, "node");
+        const GpuNode& n = at(a.nodes, node, "node");
         const float tl = intersectBox(xyz(n.a), xyz(n.b), o, invD, tmin, t);
         const float tr = intersectBox(xyz(n.c), xyz(n.d), o, invD, tmin, t);
         const uint il = floatBitsToUint(n.a.w), cl = floatBitsToUint(n.b.w);
@@ -53,12 +55,26 @@ TraceResult traverse(std::span<const GpuNode> nodes, std::span<const GpuPrim> pr
         for (uint i = 0u; i < nl + nr; ++i) {
             passes += 1u;
             const uint p = (i < nl) ? il + i : ir + (i - nl);
-            vec2 ab;
-            const float th = intersectPrim(at(prims, p, "primitive"), o, d, tmin, t, ab);
-            if (th < t) {
-                t = th;
-                r.prim = p;
-                r.ab = ab;
+            const GpuPrim& pr = at(a.prims, p, "primitive");
+            bool hit = false;
+            if (instId == GPU_NO_INSTANCE && primKind(pr) == PRIM_INSTANCE) {
+                const uint id = primMaterial(pr);
+                const GpuInstance& inst = at(a.instances, id, "instance");
+                passes += 1u;  // the bottom level's loop exit
+                hit = loop<kAnyHit>(a, inst.info.y, instanceRayOrigin(inst, o), instanceRayDirection(inst, d), tmin, t, r,
+                                    id, passes, maxPasses);
+            } else {
+                vec2 ab;
+                const float th = intersectPrim(pr, o, d, tmin, t, ab);
+                if (th < t) {
+                    t = th;
+                    r.prim = p;
+                    r.ab = ab;
+                    r.instance = instId;
+                    hit = true;
+                }
+            }
+            if (hit) {
                 found = true;
                 if (kAnyHit) break;
             }
@@ -89,24 +105,38 @@ TraceResult traverse(std::span<const GpuNode> nodes, std::span<const GpuPrim> pr
         }
     }
     if (!finished || overflow) passes = std::max(passes, maxPasses);
+    return found;
+}
+
+template <bool kAnyHit>
+TraceResult traverse(const Arrays& a, const vec3& o, const vec3& d, float tmin, float tmax, std::uint32_t passes,
+                     std::uint32_t maxPasses) {
+    TraceResult r;
+    r.passes = passes;
+    r.maxPasses = maxPasses;
+    const bool nanRay = glm::any(glm::isnan(o)) || glm::any(glm::isnan(d));
+    if (nanRay || !(tmin < tmax)) return r;
+    float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
+    const bool found = loop<kAnyHit>(a, 0u, o, d, tmin, t, r, GPU_NO_INSTANCE, passes, maxPasses);
     r.passes = passes;
     r.hit = found;
     r.t = found ? t : VKP_FAR;
+    if (!found) r.instance = GPU_NO_INSTANCE;
     return r;
 }
 
 }  // namespace
 
 TraceResult traceClosestCpu(std::span<const GpuNode> nodes, std::span<const GpuPrim> prims,
-                            const glm::vec3& o, const glm::vec3& d, float tmin, float tmax,
-                            std::uint32_t passes, std::uint32_t maxPasses) {
-    return traverse<false>(nodes, prims, o, d, tmin, tmax, passes, maxPasses);
+                            std::span<const GpuInstance> instances, const glm::vec3& o, const glm::vec3& d, float tmin,
+                            float tmax, std::uint32_t passes, std::uint32_t maxPasses) {
+    return traverse<false>(Arrays{nodes, prims, instances}, o, d, tmin, tmax, passes, maxPasses);
 }
 
 TraceResult traceAnyCpu(std::span<const GpuNode> nodes, std::span<const GpuPrim> prims,
-                        const glm::vec3& o, const glm::vec3& d, float tmin, float tmax,
-                        std::uint32_t passes, std::uint32_t maxPasses) {
-    return traverse<true>(nodes, prims, o, d, tmin, tmax, passes, maxPasses);
+                        std::span<const GpuInstance> instances, const glm::vec3& o, const glm::vec3& d, float tmin,
+                        float tmax, std::uint32_t passes, std::uint32_t maxPasses) {
+    return traverse<true>(Arrays{nodes, prims, instances}, o, d, tmin, tmax, passes, maxPasses);
 }
 
 }  // namespace vkp

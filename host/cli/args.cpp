@@ -54,6 +54,8 @@ render options:
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
   --gltf-scene N          .gltf/.glb: render scene N of the file (default: the file's default scene)
   --camera N              .gltf/.glb: view through camera N of the file (default: its first perspective camera)
+  --instancing M          .gltf/.glb: auto (default: a mesh several nodes use is stored once, two-level BVH)
+                          | flatten (every node's triangles placed in the world); also for 'vkpath info'
   --exposure EV           exposure in stops for PNG output (default 0)
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
@@ -104,6 +106,13 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--device") { a.device = value(f); continue; }
         if (f == "--gltf-scene") { a.gltfScene = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
         if (f == "--camera") { a.camera = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
+        if (f == "--instancing") {
+            const std::string v = value(f);
+            if (v == "flatten") a.instancing = false;
+            else if (v == "auto") a.instancing = true;
+            else usage("--instancing must be auto or flatten, got '" + v + "'");
+            continue;
+        }
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;

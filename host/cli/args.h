@@ -42,6 +42,7 @@ struct CliArgs {
     std::filesystem::path statsJson;             ///< --stats-json: the run's numbers
     std::optional<std::uint32_t> gltfScene;      ///< --gltf-scene N: scene of a .gltf/.glb (default: the file's)
     std::optional<std::uint32_t> camera;         ///< --camera N: camera of a .gltf/.glb (default: its first perspective one)
+    bool instancing = true;                      ///< --instancing auto (true) | flatten (false): glTF shared meshes
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

@@ -10,6 +10,7 @@
 #include <sys/resource.h>
 
 #include "bvh/flatten.h"
+#include "bvh/two_level.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "render/error_metrics.h"
@@ -40,6 +41,7 @@ Scene loadWithOverrides(const CliArgs& a) {
         o.camera = a.camera;
         o.width = a.width;  // one of them alone keeps the camera's aspect ratio
         o.height = a.height;
+        o.instancing = a.instancing;
         s = loadSceneGltf(a.scene, o);
     } else {
         s = loadSceneJson(a.scene);
@@ -77,7 +79,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     if (!a.statsJson.empty()) checkCanCreateFile(a.statsJson);
 
     t = Clock::now();
-    FlatBvh bvh = buildFlatBvh(scene);
+    FlatBvh bvh = buildSceneBvh(scene);
     st.secondsBvh = since(t);
     t = Clock::now();
     VulkanInstance instance(a.validate);
@@ -198,9 +200,16 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     return kExitOk;
 }
 
+/// Bytes of the device buffers that hold the scene's geometry: 4-wide nodes, primitives,
+/// instances and (when the variant reads them) vertex attribute records (128 bytes per primitive).
+std::size_t geometryBytes(const FlatBvh& bvh, bool vertexAttributes) {
+    return bvh.wideNodes.size() * sizeof(gpu::GpuWideNode) + bvh.prims.size() * sizeof(gpu::GpuPrim) +
+           bvh.instances.size() * sizeof(gpu::GpuInstance) + (vertexAttributes ? bvh.prims.size() * 128 : 0);
+}
+
 int runInfo(const CliArgs& a) {
     const Scene scene = loadWithOverrides(a);
-    const FlatBvh bvh = buildFlatBvh(scene);
+    const FlatBvh bvh = buildSceneBvh(scene);
     Features f = sceneFeatures(scene, a.sampler);
     f.sequence = a.sequence;
     f.lightSampling = a.lightSampling;
@@ -216,6 +225,29 @@ int runInfo(const CliArgs& a) {
     std::printf("materials    %zu\n", scene.materials.size());
     std::printf("bvh          %zu nodes, %zu leaves, depth %u, SAH cost %.3f, built in %.2f ms\n", bvh.stats.nodeCount,
                 bvh.stats.leafCount, bvh.stats.maxDepth, bvh.stats.sahCost, bvh.stats.buildMs);
+    const std::size_t bytes = geometryBytes(bvh, f.vertexAttributes);
+    if (scene.instances.empty()) {
+        std::printf("instancing   none (%s): geometry on the device %.2f MB\n",
+                    a.instancing ? "no glTF mesh is shared by two nodes" : "--instancing flatten", bytes / 1e6);
+    } else {
+        // Flattened, every instance carries its own copy of its mesh's triangles (and attribute
+        // records), with about as many 4-wide nodes per triangle as this BVH has: an estimate.
+        std::vector<std::size_t> meshPrims(scene.meshes.size(), 0);
+        for (std::size_t i = 0; i < bvh.prims.size(); ++i)
+            if (!bvh.primMesh.empty() && bvh.primMesh[i] > 0) ++meshPrims[bvh.primMesh[i] - 1];
+        std::size_t storedPrims = 0, instancedTriangles = 0;
+        for (std::size_t n : meshPrims) storedPrims += n;
+        for (const MeshInstance& inst : scene.instances) instancedTriangles += meshPrims[inst.mesh];
+        const double nodesPerPrim = double(bvh.wideNodes.size()) / double(std::max<std::size_t>(bvh.prims.size(), 1));
+        const double perPrim = sizeof(gpu::GpuPrim) + (f.vertexAttributes ? 128.0 : 0.0) + nodesPerPrim * sizeof(gpu::GpuWideNode);
+        const double flatBytes = double(bytes) - double(bvh.instances.size() * (sizeof(gpu::GpuInstance) + sizeof(gpu::GpuPrim))) +
+                                 double(instancedTriangles - storedPrims) * perPrim;
+        std::printf("instancing   %zu instances of %zu shared meshes (%zu triangles stored, %zu drawn), %zu top-level primitives\n",
+                    scene.instances.size(), scene.meshes.size(), storedPrims, instancedTriangles + scene.shapes.size(),
+                    bvh.stats.topPrimCount);
+        std::printf("memory       geometry on the device %.2f MB two-level (auto); flattened (--instancing flatten) about %.2f MB\n",
+                    bytes / 1e6, flatBytes / 1e6);
+    }
     std::printf("variant      %s\n", f.name().c_str());
     return kExitOk;
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "render/distribution_table.h"
 #include "render/light_table.h"
@@ -35,7 +37,20 @@ double sceneRadius(const Scene& scene) {
             add(a), add(b), add(c);
         }
     }
-    if (scene.shapes.empty()) return 1.0;
+    // Instances: their meshes' boxes placed in the world (corners; slightly larger than the triangles).
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> meshBox(scene.meshes.size(), {glm::dvec3(1e300), glm::dvec3(-1e300)});
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const Shape& s : scene.meshes[m].shapes)
+            for (const glm::vec3& p : {s.p0, s.p1, s.p2}) {
+                meshBox[m].first = glm::min(meshBox[m].first, glm::dvec3(p));
+                meshBox[m].second = glm::max(meshBox[m].second, glm::dvec3(p));
+            }
+    for (const MeshInstance& inst : scene.instances) {
+        const auto& [blo, bhi] = meshBox.at(inst.mesh);
+        for (int c = 0; c < 8; ++c)
+            add(glm::dvec3(inst.objectToWorld * glm::dvec4((c & 1) ? bhi.x : blo.x, (c & 2) ? bhi.y : blo.y, (c & 4) ? bhi.z : blo.z, 1.0)));
+    }
+    if (scene.shapes.empty() && scene.instances.empty()) return 1.0;
     return std::max(0.5 * glm::length(hi - lo), 1e-6);
 }
 }  // namespace

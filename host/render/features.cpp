@@ -54,7 +54,7 @@ std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
             vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling == LightSampling::SolidAngle,
-            0u, workgroupX, workgroupY};
+            instances, workgroupX, workgroupY};
 }
 
 std::string Features::name() const {
@@ -89,6 +89,7 @@ std::string Features::name() const {
     if (vertexAttributes) out += " vertex-attributes";
     if (textures) out += " textures";
     if (alpha) out += " alpha";
+    if (instances) out += " instances";
     return out;
 }
 
@@ -98,15 +99,16 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
-        f.vertexAttributes = f.textures = f.alpha = true;
+        f.vertexAttributes = f.textures = f.alpha = f.instances = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
-    for (const Shape& s : scene.shapes) {
+    forEachShape(scene, [&](const Shape& s) {
         (s.type == ShapeType::Sphere ? f.spheres : f.parallelograms) = true;
         used[s.material] = true;
         if (s.sampled) (s.type == ShapeType::Sphere ? f.sphereLights : f.parallelogramLights) = true;
-    }
+    });
+    f.instances = !scene.instances.empty();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const Material m = kernelMaterial(scene.materials[i]);  // what the kernel renders it as

@@ -50,13 +50,14 @@ struct Features {
     bool vertexAttributes = false;  ///< mesh triangles shade with UVs / interpolated normals (render/texture_pack.h)
     bool textures = false;          ///< some material reads a texture
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
+    bool instances = false;         ///< two-level BVH: the scene has instanced meshes (shared/instance.h)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::SolidAngle;
     std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..20 (18: not used by this kernel; 19, 20: workgroup size), in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
-    /// lib/alpha.glsl).
+    /// Values for constant_id 0..20, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size, pathtrace.comp).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "shared/gpu_types.h"
+#include "shared/instance.h"
 
 namespace vkp::gpu {
 
@@ -13,6 +14,9 @@ static_assert(offsetof(GpuMaterial, m2) == 32 && offsetof(GpuMaterial, m3) == 48
 static_assert(sizeof(GpuLight) == GPU_LIGHT_TEXELS * 16, "GpuLight: GPU_LIGHT_TEXELS vec4 texels");
 static_assert(sizeof(GpuFrame) == 12 * 16, "GpuFrame: twelve vec4 members (std140)");
 static_assert(offsetof(GpuFrame, env) == 10 * 16 && offsetof(GpuFrame, envSize) == 11 * 16, "GpuFrame member order");
+static_assert(sizeof(GpuInstance) == GPU_INSTANCE_TEXELS * 16, "GpuInstance: GPU_INSTANCE_TEXELS vec4 texels");
+static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) == 4 * 16 && offsetof(GpuInstance, o2w2) == 6 * 16,
+              "GpuInstance texel order: info, world-to-object rows, object-to-world rows");
 static_assert(sizeof(GpuPush) == 2 * 16 && offsetof(GpuPush, adaptive) == 16, "GpuPush: two uvec4 (push constants)");
 
 }  // namespace vkp::gpu

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "bvh/flatten.h"
 #include "bvh/wide_pack.h"
@@ -36,6 +37,7 @@ enum : std::uint32_t {
     kBindingAttributes,  // lib/surface.glsl
     kBindingTexInfo,
     kBindingTexels,
+    kBindingInstances,  // 15: shared/instance.h
 };
 
 template <class T>
@@ -71,7 +73,8 @@ Image PixelSums::varianceOfMean() const {
 
 struct Renderer::Impl {
     std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, envTexels, envDist, decision, active;
-    std::unique_ptr<GpuBuffer> attributes, texInfo, texels;
+    std::unique_ptr<GpuBuffer> attributes, texInfo, texels, instances;
+    vk::raii::BufferView instancesView{nullptr};
     vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
     vk::raii::BufferView attributesView{nullptr}, texInfoView{nullptr}, texelsView{nullptr};
     vk::raii::BufferView envTexelsView{nullptr}, envDistView{nullptr};
@@ -109,6 +112,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
                           " is beyond this device's limits (" + std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
                           std::to_string(limits.maxComputeWorkGroupSize[1]) + ", " +
                           std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations)");
+    if (bvh.instances.size() != scene.instances.size())
+        throw std::invalid_argument("Renderer: the BVH was not built with the scene's instances (use buildSceneBvh)");
     const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
     // The kernel traverses the 4-wide layout (lib/traverse.glsl): FlatBvh::wideNodes, or collapsed here
     // for a FlatBvh that came from flattenBvh alone.
@@ -129,11 +134,20 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     if (tex.info.empty()) tex.info.assign(1, glm::uvec4(0));
     if (tex.texels.empty()) tex.texels.assign(1, 0u);
     std::vector<glm::uvec4> attributes(1, glm::uvec4(0));
-    if (features_.vertexAttributes) attributes = packVertexAttributes(scene, bvh.primToShape);
+    if (features_.vertexAttributes) attributes = packVertexAttributes(scene, bvh);
     if (const std::string problem = texelLimitProblem(scene, tex, attributes.size(), texelLimit); !problem.empty())
         throw VulkanError(problem);
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
-    for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) primOfShape[bvh.primToShape[i]] = i;
+    for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) {
+        const bool topShape = (bvh.primMesh.empty() || bvh.primMesh[i] == 0) && bvh.primToShape[i] != FlatBvh::kNotAShape;
+        if (topShape) primOfShape[bvh.primToShape[i]] = i;
+    }
+    // Instances (two-level BVH): a token record when there are none (HAS_INSTANCES is then false).
+    std::vector<gpu::GpuInstance> instances = bvh.instances;
+    if (instances.empty()) instances.resize(1, gpu::GpuInstance{});
+    if (instances.size() * gpu::GPU_INSTANCE_TEXELS > texelLimit)
+        throw VulkanError("scene too large for this device: " + std::to_string(instances.size()) +
+                          " instances need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
 
     gpu::GpuFrame frame = packFrame(scene, options.lightPick, glm::uvec2(options.workgroupX, options.workgroupY), options.linearTiles);
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
@@ -166,6 +180,8 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     impl_->attributesView = impl_->attributes->texelView();
     impl_->texInfoView = impl_->texInfo->texelView();
     impl_->texelsView = impl_->texels->texelView(vk::Format::eR32Uint);
+    impl_->instances = uploadTexels(device, instances);
+    impl_->instancesView = impl_->instances->texelView();
 
     // Two vec4 per pixel: the sum and its compensation (shaders/shared/compensated_sum.h).
     const std::size_t pixelBytes = std::size_t(width_) * height_ * 2 * 4 * sizeof(float);
@@ -197,7 +213,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer};
+                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer};
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
@@ -217,6 +233,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
     p.bindTexelView(kBindingAttributes, *impl_->attributesView);
     p.bindTexelView(kBindingTexInfo, *impl_->texInfoView);
     p.bindTexelView(kBindingTexels, *impl_->texelsView);
+    p.bindTexelView(kBindingInstances, *impl_->instancesView);
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 

@@ -42,7 +42,7 @@ bool materialReadsTextures(const Material& original) {
 
 std::vector<bool> usedMaterials(const Scene& scene) {
     std::vector<bool> used(scene.materials.size(), false);
-    for (const Shape& s : scene.shapes) used[s.material] = true;
+    forEachShape(scene, [&](const Shape& s) { used[s.material] = true; });
     return used;
 }
 }  // namespace
@@ -66,14 +66,15 @@ bool sceneHasAlpha(const Scene& scene) {
 
 bool sceneHasVertexAttributes(const Scene& scene) {
     std::vector<int> pbr(scene.materials.size(), -1);
-    for (const Shape& s : scene.shapes) {
-        if (s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) continue;
+    bool found = false;
+    forEachShape(scene, [&](const Shape& s) {
+        if (found || s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) return;
         int& p = pbr[s.material];
         if (p < 0) p = kernelMaterial(scene.materials[s.material]).type == MaterialType::Pbr ? 1 : 0;
         const std::uint32_t f = scene.triangleVertices.at(s.attributes).flags;
-        if (p == 1 && (f & (TriangleVertices::kHasNormal | TriangleVertices::kHasUv))) return true;
-    }
-    return false;
+        if (p == 1 && (f & (TriangleVertices::kHasNormal | TriangleVertices::kHasUv))) found = true;
+    });
+    return found;
 }
 
 TexturePack packTextures(const Scene& scene) {
@@ -136,11 +137,13 @@ std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::
     return {};
 }
 
-std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vector<std::uint32_t>& primToShape) {
-    std::vector<glm::uvec4> out(std::max<std::size_t>(primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
+std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh) {
+    std::vector<glm::uvec4> out(std::max<std::size_t>(bvh.primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
     const MeshVertices& mv = scene.vertices;
-    for (std::size_t i = 0; i < primToShape.size(); ++i) {
-        const Shape& s = scene.shapes[primToShape[i]];
+    for (std::size_t i = 0; i < bvh.primToShape.size(); ++i) {
+        const Shape* sp = primShape(scene, bvh, i);
+        if (!sp) continue;  // an instance primitive
+        const Shape& s = *sp;
         if (s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) continue;
         const TriangleVertices& tv = scene.triangleVertices.at(s.attributes);
         glm::uvec4* rec = &out[i * kAttributeTexels];

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "bvh/flatten.h"
 #include "scene/scene.h"
 
 namespace vkp {
@@ -32,9 +33,10 @@ struct TexturePack {
 /// The textures and per-material texture records of `scene` (kernel materials: kernelMaterial).
 TexturePack packTextures(const Scene& scene);
 
-/// One kAttributeTexels record per BVH primitive (primToShape order): UVs, shading normals and
-/// tangents of mesh triangles; zeros (flags 0: no attributes) for every other primitive.
-std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const std::vector<std::uint32_t>& primToShape);
+/// One kAttributeTexels record per BVH primitive (bvh.prims order, primShape): UVs, shading normals
+/// and tangents of mesh triangles (object space for an instanced mesh's); zeros (flags 0: no
+/// attributes) for every other primitive.
+std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh);
 
 /// Empty if the packed textures (pack) and vertex-attribute records (attributeTexels texels) fit
 /// texel buffers of at most `limit` elements (maxTexelBufferElements); else the one line that

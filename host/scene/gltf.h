@@ -19,11 +19,16 @@ struct GltfOptions {
     /// --width / --height: both given: that size; one given: the other follows the camera's aspect
     /// ratio; none: 512 pixels on the long side.
     std::optional<std::uint32_t> width, height;
+    /// --instancing auto: a mesh that two or more nodes use, and that does not emit, is stored once
+    /// in object space (Scene::meshes) with one Scene::instances entry per node, for a two-level
+    /// BVH. false (--instancing flatten): every node's triangles are placed in the world (Scene::shapes).
+    bool instancing = false;
 };
 
 /// Default long side of the image, in pixels, when neither the file nor the options give a size.
 inline constexpr std::uint32_t kGltfDefaultImageSide = 512;
-/// Most triangles one load may produce (counted over every node that instances a mesh).
+/// Most triangles one load may produce (counted over every node that instances a mesh; a mesh
+/// stored once for instancing counts once).
 inline constexpr std::uint64_t kGltfMaxTriangles = 1ull << 26;
 /// Most vertices one load may produce (over every instanced primitive).
 inline constexpr std::uint64_t kGltfMaxVertices = 1ull << 26;

@@ -139,17 +139,72 @@ Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex,
     return found;
 }
 
-/// Append the instances' triangles to scene; returns the bounds of what was appended.
+/// Determinant of the linear part of a node's world matrix: 0 or not finite = hidden (scaled to
+/// nothing), negative = mirrored.
+double linearDeterminant(const glm::dmat4& world) { return glm::determinant(glm::dmat3(world)); }
+
+/// Which meshes are stored once for instancing: used by at least two drawn nodes, every primitive's
+/// material non-emissive (lights are sampled in world space). materials: the scene index of each
+/// primitive's material, per mesh.
+std::vector<char> sharedMeshes(const tinygltf::Model& model, const Instances& inst,
+                               const std::vector<std::vector<std::uint32_t>>& materials, const Scene& scene) {
+    std::vector<std::uint32_t> uses(model.meshes.size(), 0);
+    for (const MeshInstance& mi : inst.meshes) {
+        const double det = linearDeterminant(mi.world);
+        if (std::abs(det) > 0.0 && std::isfinite(det)) ++uses[mi.mesh];
+    }
+    std::vector<char> shared(model.meshes.size(), 0);
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        if (uses[m] < 2) continue;
+        bool emits = false;
+        for (std::uint32_t mat : materials[m]) emits = emits || scene.materials[mat].emits();
+        shared[m] = !emits;
+    }
+    return shared;
+}
+
+/// The world box of an object-space box under an affine map (its eight corners, in double).
+void growTransformedBox(const glm::dmat4& world, glm::dvec3 blo, glm::dvec3 bhi, glm::dvec3& lo, glm::dvec3& hi) {
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? bhi.x : blo.x, (c & 2) ? bhi.y : blo.y, (c & 4) ? bhi.z : blo.z);
+        const glm::dvec3 w = glm::dvec3(world * glm::dvec4(p, 1.0));
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+}
+
+/// Append the instances' triangles to scene (world space), or with `instancing` the meshes that
+/// several nodes share once in object space plus one MeshInstance per node; returns the world bounds
+/// of what was appended.
 std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Instances& inst,
-                                                  std::optional<std::uint32_t> materialOverride, Scene& scene) {
+                                                  std::optional<std::uint32_t> materialOverride, bool instancing,
+                                                  Scene& scene) {
     const tinygltf::Model& model = doc.model;
-    // Count first: refuse absurd totals before reading anything, and allocate once.
-    std::uint64_t triangles = 0, vertices = 0, uvVertices = 0;
+    MaterialMapper materials(doc, scene, materialOverride);
+    // Each primitive's scene material, per mesh (mapped once, in the order the flattening loader maps them).
+    std::vector<std::vector<std::uint32_t>> meshMaterials(model.meshes.size());
+    std::vector<char> mapped(model.meshes.size(), 0);
+    std::vector<char> shared(model.meshes.size(), 0);
+    if (instancing) {
+        for (const MeshInstance& mi : inst.meshes) {
+            if (mapped[mi.mesh]) continue;
+            mapped[mi.mesh] = 1;
+            for (const auto& prim : model.meshes[mi.mesh].primitives) meshMaterials[mi.mesh].push_back(materials.material(prim.material));
+        }
+        shared = sharedMeshes(model, inst, meshMaterials, scene);
+    }
+    // Count first: refuse absurd totals before reading anything, and allocate once. A shared mesh
+    // counts once.
+    std::uint64_t triangles = 0, vertices = 0, uvVertices = 0, worldTriangles = 0;
+    std::vector<char> counted(model.meshes.size(), 0);
     for (const MeshInstance& mi : inst.meshes) {
         const auto& mesh = model.meshes[mi.mesh];
+        if (shared[mi.mesh] && counted[mi.mesh]) continue;
+        counted[mi.mesh] = 1;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const PrimitiveSize size = primitiveSize(doc, mi.mesh, p);
             triangles += size.triangles;
+            if (!shared[mi.mesh]) worldTriangles += size.triangles;
             vertices += size.vertices;
             if (mesh.primitives[p].attributes.count("TEXCOORD_0")) uvVertices += size.vertices;
             if (triangles > kGltfMaxTriangles || vertices > kGltfMaxVertices) {
@@ -163,23 +218,56 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         }
     }
     const std::size_t firstShape = scene.shapes.size();
-    scene.shapes.reserve(firstShape + triangles);
+    scene.shapes.reserve(firstShape + worldTriangles);
     scene.triangleVertices.reserve(scene.triangleVertices.size() + triangles);
     scene.vertices.normal.reserve(scene.vertices.size() + vertices);
     if (uvVertices) scene.vertices.uv.reserve(scene.vertices.size() + vertices);
 
-    MaterialMapper materials(doc, scene, materialOverride);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    std::vector<std::int64_t> meshSlot(model.meshes.size(), -1);  // index into scene.meshes
     for (const MeshInstance& mi : inst.meshes) {
         const auto& mesh = model.meshes[mi.mesh];
-        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-            const std::uint32_t m = materials.material(mesh.primitives[p].material);
-            appendPrimitive(doc, mi.mesh, p, mi.world, m, scene);
+        if (!shared[mi.mesh]) {
+            for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+                const std::uint32_t m = materials.material(mesh.primitives[p].material);
+                appendPrimitive(doc, mi.mesh, p, mi.world, m, scene);
+            }
+            continue;
         }
+        if (meshSlot[mi.mesh] < 0) {  // first use: its triangles once, in object space
+            const std::size_t before = scene.shapes.size();
+            for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+                appendPrimitive(doc, mi.mesh, p, glm::dmat4(1.0), meshMaterials[mi.mesh][p], scene);
+            InstancedMesh im;
+            im.name = "mesh " + std::to_string(mi.mesh) + (mesh.name.empty() ? "" : " (\"" + mesh.name + "\")");
+            im.shapes.assign(scene.shapes.begin() + std::ptrdiff_t(before), scene.shapes.end());
+            scene.shapes.resize(before);
+            meshSlot[mi.mesh] = std::int64_t(scene.meshes.size());
+            scene.meshes.push_back(std::move(im));
+        }
+        const double det = linearDeterminant(mi.world);
+        if (!(std::abs(det) > 0.0) || !std::isfinite(det)) continue;  // hidden: nothing to draw
+        const InstancedMesh& im = scene.meshes[std::size_t(meshSlot[mi.mesh])];
+        glm::dvec3 blo(std::numeric_limits<double>::infinity()), bhi(-std::numeric_limits<double>::infinity());
+        for (const Shape& s : im.shapes) {
+            for (const glm::vec3& p : {s.p0, s.p1, s.p2}) {
+                blo = glm::min(blo, glm::dvec3(p));
+                bhi = glm::max(bhi, glm::dvec3(p));
+            }
+        }
+        if (im.shapes.empty()) continue;
+        glm::dvec3 wlo(std::numeric_limits<double>::infinity()), whi(-std::numeric_limits<double>::infinity());
+        growTransformedBox(mi.world, blo, bhi, wlo, whi);
+        const double big = double(std::numeric_limits<float>::max()) * 0.5;
+        if (!(glm::all(glm::lessThan(glm::abs(wlo), glm::dvec3(big))) && glm::all(glm::lessThan(glm::abs(whi), glm::dvec3(big)))))
+            fail(doc.file, nodePlace(doc, mi.node), "places " + im.name + " outside the range of 32-bit floats");
+        lo = glm::min(lo, wlo);
+        hi = glm::max(hi, whi);
+        scene.instances.push_back({std::uint32_t(meshSlot[mi.mesh]), mi.world});
     }
     if (!model.animations.empty()) {
         scene.warnings.push_back(line(doc.file, "animations", "ignored: the scene is drawn at rest"));
     }
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (std::size_t i = firstShape; i < scene.shapes.size(); ++i) {
         for (const glm::vec3& p : {scene.shapes[i].p0, scene.shapes[i].p1, scene.shapes[i].p2}) {
             lo = glm::min(lo, glm::dvec3(p));
@@ -206,7 +294,7 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
     scene.path = file;
     scene.warnings = std::move(doc.warnings);
     const gltf::Instances inst = gltf::traverse(doc, options.scene, glm::dmat4(1.0), scene);
-    const auto [lo, hi] = gltf::appendInstances(doc, inst, std::nullopt, scene);
+    const auto [lo, hi] = gltf::appendInstances(doc, inst, std::nullopt, options.instancing, scene);
 
     const gltf::CameraInstance* chosen = nullptr;
     if (options.camera) {
@@ -240,7 +328,7 @@ void appendGltf(Scene& scene, const std::filesystem::path& file, const GltfInclu
     gltf::Document doc = gltf::readDocument(file);
     scene.warnings.insert(scene.warnings.end(), doc.warnings.begin(), doc.warnings.end());
     const gltf::Instances inst = gltf::traverse(doc, include.sceneIndex, include.transform, scene);
-    gltf::appendInstances(doc, inst, include.material, scene);
+    gltf::appendInstances(doc, inst, include.material, false, scene);  // JSON scenes: flattened
 }
 
 }  // namespace vkp

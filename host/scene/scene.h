@@ -159,6 +159,23 @@ struct Environment {
     bool hasMap() const { return !image.empty(); }
 };
 
+/// A mesh stored once in object space and drawn by several instances: a glTF mesh that two or more
+/// nodes of the scene use (and that does not emit: lights are sampled in world space, so emissive
+/// meshes are always flattened). The loader makes these only when asked (GltfOptions::instancing);
+/// host/bvh/two_level.h builds one bottom-level BVH per mesh.
+struct InstancedMesh {
+    std::string name;           ///< for messages, e.g. "mesh 0 (\"bunny\")"
+    std::vector<Shape> shapes;  ///< object-space triangles; Shape::attributes index Scene::triangleVertices
+                                ///< as for world-space triangles, but their normals and tangents are in
+                                ///< object space (the kernel transforms them at a hit)
+};
+
+/// One placement of an InstancedMesh: the node's world matrix (affine, non-singular, finite).
+struct MeshInstance {
+    std::uint32_t mesh = 0;          ///< index into Scene::meshes
+    glm::dmat4 objectToWorld{1.0};   ///< column-major, last row (0, 0, 0, 1)
+};
+
 struct Scene {
     std::filesystem::path path;  ///< file it was loaded from (for messages)
     Camera camera;
@@ -167,6 +184,10 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<std::uint32_t> lights;  ///< indices into shapes of every sampled shape, in file order
+    /// Shared meshes and their instances (two-level BVH); empty unless a glTF file was loaded with
+    /// instancing. Never lights: an instanced mesh does not emit.
+    std::vector<InstancedMesh> meshes;
+    std::vector<MeshInstance> instances;
     std::vector<TriangleVertices> triangleVertices;  ///< glTF triangles' corners (Shape::attributes)
     MeshVertices vertices;                           ///< their per-vertex attributes
     std::vector<TextureImage> images;
@@ -187,6 +208,15 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file);
 /// transmitting one (exact-Fresnel glass); see host/scene/gltf_kernel_material.cpp. Used by the
 /// GPU packing and should be used by anything that chooses kernel features from material types.
 Material kernelMaterial(const Material& m);
+
+/// Calls f(shape) for every shape the scene draws: Scene::shapes (world space) and the triangles of
+/// every instanced mesh (object space, once per mesh). For what depends on kinds and materials only.
+template <class F>
+void forEachShape(const Scene& scene, F&& f) {
+    for (const Shape& s : scene.shapes) f(s);
+    for (const InstancedMesh& m : scene.meshes)
+        for (const Shape& s : m.shapes) f(s);
+}
 
 /// Surface area in world units^2: 4 pi r^2 (sphere), |u x v| (quad), |e1 x e2| / 2 (triangle).
 float shapeArea(const Shape& s);

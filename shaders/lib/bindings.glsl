@@ -93,4 +93,24 @@ GpuLight fetchLight(uint i) {
     return l;
 }
 
+// ---- Instances (two-level BVH, shared/instance.h): compiled in only for scenes that have some.
+// The traversal (lib/traverse_wide.glsl) tests VKP_HAS_INSTANCES.
+layout(constant_id = 18) const bool HAS_INSTANCES = true;
+#define VKP_HAS_INSTANCES HAS_INSTANCES
+#include "shared/instance.h"
+layout(set = 0, binding = 15) uniform usamplerBuffer uInstances;  // GPU_INSTANCE_TEXELS per instance
+
+GpuInstance fetchInstance(uint i) {
+    int base = int(i * GPU_INSTANCE_TEXELS);
+    GpuInstance g;
+    g.info = texelFetch(uInstances, base);
+    g.w2o0 = fetchF(uInstances, base + 1);
+    g.w2o1 = fetchF(uInstances, base + 2);
+    g.w2o2 = fetchF(uInstances, base + 3);
+    g.o2w0 = fetchF(uInstances, base + 4);
+    g.o2w1 = fetchF(uInstances, base + 5);
+    g.o2w2 = fetchF(uInstances, base + 6);
+    return g;
+}
+
 #endif

@@ -21,4 +21,13 @@ bool vkpLeafHit(uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint pr
     return true;
 }
 
+/// vkpLeafHit that also records which instance the hit belongs to (instId: GPU_NO_INSTANCE at the
+/// top level of a two-level BVH, shared/instance.h).
+bool vkpLeafHitInstance(uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex, inout vec2 abHit,
+                        inout uint inst, uint instId) {
+    if (!vkpLeafHit(p, o, d, tmin, t, primIndex, abHit)) return false;
+    inst = instId;
+    return true;
+}
+
 #endif

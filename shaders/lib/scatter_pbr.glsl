@@ -42,15 +42,16 @@ vec3 envDirectLightPbr(vec3 xo, vec3 ns, Onb f, GltfBrdf b, vec3 v, vec2 u, floa
 /// from lib/surface.glsl (ns without one), primitive prim/p, surface parameters ab). The BRDF
 /// lives in nShade's frame; directions below the geometric surface get f = 0 (no light leaks).
 /// Adds next-event estimation to s.radiance, sets s.o, the new direction newDir, s.throughput and
-/// the MIS state. Returns true when the path ends (no valid direction: f = 0).
-bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab, vec3 x, vec3 ns, vec3 nShade, out vec3 newDir,
+/// the MIS state. Returns true when the path ends (no valid direction: f = 0). extraOffset: the
+/// instance's part of the ray-origin offset (spawnRayOriginExtra; 0 for a world-space primitive).
+bool scatterPbr(inout PathState s, GpuMaterial m, GpuPrim p, uint prim, vec2 ab, vec3 x, vec3 ns, vec3 nShade, float extraOffset, out vec3 newDir,
                 inout uint rays, inout uint passes) {
     GltfBrdf b = makeGltfBrdf(m.m0.xyz, m.m3.x, m.m3.y, m.m2.w, m.m2.xyz);
     Onb f = onbFromNormal(nShade);
     vec3 v = toLocal(f, -s.d);
     float uStrategy = sampleNext(s.smp);
     vec3 u3 = vec3(sampleNext(s.smp), sampleNext2(s.smp));
-    vec3 xo = spawnRayOrigin(p, ab, x, ns);
+    vec3 xo = spawnRayOriginExtra(p, ab, x, ns, extraOffset);
     newDir = s.d;
     bool nee = (SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn());
     if (nee) {

@@ -56,8 +56,11 @@ bool sampleSlot(uint rec, uint slot, vec2 uv, out vec4 c) {
 /// At a hit on primitive `prim` (p, surface parameters ab, geometric normal ns facing the incoming
 /// direction d, material index mi): applies the textures of a MAT_PBR material m (base colour x
 /// texture RGB, metallic x B, roughness x G) and returns the shading normal (ns where there is
-/// none, see above).
-vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout GpuMaterial m) {
+/// none, see above). An instance's triangle (inst != GPU_NO_INSTANCE, shared/instance.h): p is the
+/// triangle placed in the world (instanceWorldPrim), ab its object-space surface parameters (the
+/// order of its attribute record), and each corner's normal and tangent is taken into the world
+/// (inverse transpose, linear map; unit length) before interpolating, as the flattening loader does.
+vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout GpuMaterial m, uint inst) {
     if (!HAS_VERTEX_ATTRIBUTES || primKind(p) != PRIM_TRIANGLE) return ns;
     int base = int(prim * ATTR_TEXELS);
     vec4 a0 = fetchF(uAttributes, base);
@@ -66,9 +69,19 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
     float w0 = 1.0f - ab.x - ab.y;
     vec3 n = ns;
     bool hasN = (flags & ATTR_HAS_NORMAL) != 0u;
+    bool instanced = HAS_INSTANCES && inst != GPU_NO_INSTANCE;
+    GpuInstance ins;
+    if (instanced) ins = fetchInstance(inst);
     if (hasN) {
-        vec3 ni = w0 * fetchF(uAttributes, base + 2).xyz + ab.x * fetchF(uAttributes, base + 3).xyz +
-                  ab.y * fetchF(uAttributes, base + 4).xyz;
+        vec3 n0 = fetchF(uAttributes, base + 2).xyz;
+        vec3 n1 = fetchF(uAttributes, base + 3).xyz;
+        vec3 n2 = fetchF(uAttributes, base + 4).xyz;
+        if (instanced) {
+            n0 = instanceNormalToWorld(ins, n0);
+            n1 = instanceNormalToWorld(ins, n1);
+            n2 = instanceNormalToWorld(ins, n2);
+        }
+        vec3 ni = w0 * n0 + ab.x * n1 + ab.y * n2;
         float len = length(ni);
         hasN = len > 0.0f;
         if (hasN) n = ni / len;  // the file's orientation (turned to the ray's side below)
@@ -86,8 +99,15 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
             // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
             if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
-            vec4 t = w0 * fetchF(uAttributes, base + 5) + ab.x * fetchF(uAttributes, base + 6) +
-                     ab.y * fetchF(uAttributes, base + 7);
+            vec4 t0 = fetchF(uAttributes, base + 5);
+            vec4 t1 = fetchF(uAttributes, base + 6);
+            vec4 t2 = fetchF(uAttributes, base + 7);
+            if (instanced) {
+                t0 = instanceTangentToWorld(ins, t0);
+                t1 = instanceTangentToWorld(ins, t1);
+                t2 = instanceTangentToWorld(ins, t2);
+            }
+            vec4 t = w0 * t0 + ab.x * t1 + ab.y * t2;
             vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
             float tl = length(tt);
             if (tl > 0.0f) {

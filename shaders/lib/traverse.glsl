@@ -11,7 +11,9 @@
 // Algorithm: binary nodes holding both children's boxes; each step tests the two boxes, tests the
 // primitives of every hit leaf child at once (one inner loop), then descends into the nearer hit
 // inner child and pushes the other onto a short stack, or pops. Closest hit culls boxes beyond the
-// current hit.
+// current hit. Instances (two-level BVH): a top-level PRIM_INSTANCE leaf runs the same loop
+// (lib/traverse_binary_loop.glsl, a second function with its own stack) on its mesh's bottom level
+// from GpuInstance::info.y, in object space, as lib/traverse_wide.glsl does from info.x.
 //
 // Loop guard: lavapipe silently ends loops after 65,535 passes per invocation (DESIGN.md).
 // `passes` counts like lavapipe: +2 per step (the step and the exit of its leaf loop), +1 per
@@ -62,71 +64,65 @@ GpuWideNode fetchWideNode(uint i) {
 #endif
 #define VKP_TRAVERSE_STACK 32u
 
+#include "shared/instance.h"
+// Instances (two-level BVH): as in lib/traverse_wide.glsl, compiled in when the includer defines
+// VKP_HAS_INSTANCES as a true expression and GpuInstance fetchInstance(uint i).
+#ifndef VKP_HAS_INSTANCES
+#define VKP_HAS_INSTANCES false
+GpuInstance fetchInstance(uint i) {
+    GpuInstance g;
+    g.info = uvec4(0u);
+    g.w2o0 = vec4(0.0); g.w2o1 = vec4(0.0); g.w2o2 = vec4(0.0);
+    g.o2w0 = vec4(0.0); g.o2w1 = vec4(0.0); g.o2w2 = vec4(0.0);
+    return g;
+}
+#endif
+
+// The bottom level of an instance: its triangles are plain leaf primitives.
+#define VKP_BIN_LOOP_FN vkpBinaryLoopBottom
+#define VKP_BIN_LEAF(p) vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, instId)
+#include "lib/traverse_binary_loop.glsl"
+#undef VKP_BIN_LOOP_FN
+#undef VKP_BIN_LEAF
+
+/// A top-level leaf primitive p: a PRIM_INSTANCE (with VKP_HAS_INSTANCES) maps the ray into its
+/// object space and traverses its mesh's bottom level from its binary root (+1 pass: that loop's
+/// exit); anything else is an ordinary leaf test.
+bool vkpBinaryTopLeaf(const bool anyHit, uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
+                      inout vec2 abHit, inout uint inst, inout uint passes) {
+    if (VKP_HAS_INSTANCES) {
+        GpuPrim pr = fetchPrim(p);
+        if (primKind(pr) == PRIM_INSTANCE) {
+            uint id = primMaterial(pr);
+            GpuInstance ins = fetchInstance(id);
+            passes += 1u;
+            return vkpBinaryLoopBottom(anyHit, ins.info.y, instanceRayOrigin(ins, o), instanceRayDirection(ins, d), tmin, t,
+                                       primIndex, abHit, inst, id, passes);
+        }
+    }
+    return vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE);
+}
+
+#define VKP_BIN_LOOP_FN vkpBinaryLoopTop
+#define VKP_BIN_LEAF(p) vkpBinaryTopLeaf(anyHit, p, o, d, tmin, t, primIndex, abHit, inst, passes)
+#include "lib/traverse_binary_loop.glsl"
+#undef VKP_BIN_LOOP_FN
+#undef VKP_BIN_LEAF
+
 // Shared body of traceClosest (anyHit = false) and traceAny (anyHit = true); the constant
 // argument is folded after inlining.
 bool vkpTraverse(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out uint primIndex,
-                 out float tHit, out vec2 abHit, inout uint passes) {
+                 out float tHit, out vec2 abHit, out uint inst, inout uint passes) {
     primIndex = GPU_NODE_EMPTY;
     tHit = VKP_FAR;
     abHit = vec2(0.0);
+    inst = GPU_NO_INSTANCE;
     bool nanRay = any(isnan(o)) || any(isnan(d));
     if (nanRay || !(tmin < tmax)) return false;
     float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
-    vec3 invD = safeInverse(d);
-    uint stack[VKP_TRAVERSE_STACK];
-    uint sp = 0u;
-    uint node = 0u;
-    bool finished = false;
-    bool overflow = false;
-    bool found = false;
-    while (passes < uint(VKP_MAX_PASSES)) {
-        passes += 2u;
-        GpuNode n = fetchNode(node);
-        float tl = intersectBox(n.a.xyz, n.b.xyz, o, invD, tmin, t);
-        float tr = intersectBox(n.c.xyz, n.d.xyz, o, invD, tmin, t);
-        uint il = floatBitsToUint(n.a.w);
-        uint cl = floatBitsToUint(n.b.w);
-        uint ir = floatBitsToUint(n.c.w);
-        uint cr = floatBitsToUint(n.d.w);
-        bool hitL = tl < VKP_FAR;
-        bool hitR = tr < VKP_FAR;
-        uint nl = hitL ? cl : 0u;
-        uint nr = hitR ? cr : 0u;
-        for (uint i = 0u; i < nl + nr; ++i) {
-            passes += 1u;
-            uint p = (i < nl) ? il + i : ir + (i - nl);
-            if (vkpLeafHit(p, o, d, tmin, t, primIndex, abHit)) {
-                found = true;
-                if (anyHit) break;
-            }
-        }
-        if (anyHit && found) {
-            finished = true;
-            break;
-        }
-        bool innerL = hitL && cl == 0u;
-        bool innerR = hitR && cr == 0u;
-        if (innerL && innerR) {
-            bool leftFirst = tl <= tr;
-            if (sp < VKP_TRAVERSE_STACK) {
-                stack[sp] = leftFirst ? ir : il;
-                sp += 1u;
-            } else {
-                overflow = true;
-            }
-            node = leftFirst ? il : ir;
-        } else if (innerL || innerR) {
-            node = innerL ? il : ir;
-        } else if (sp > 0u) {
-            sp -= 1u;
-            node = stack[sp];
-        } else {
-            finished = true;
-            break;
-        }
-    }
-    if (!finished || overflow) passes = max(passes, uint(VKP_MAX_PASSES));
+    bool found = vkpBinaryLoopTop(anyHit, 0u, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE, passes);
     tHit = found ? t : VKP_FAR;
+    if (!found) inst = GPU_NO_INSTANCE;
     return found;
 }
 
@@ -136,7 +132,8 @@ bool vkpTraverse(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out 
 /// !(tmin < tmax) misses without a pass. See the loop guard above for `passes`.
 bool traceClosest(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
                   out vec2 ab, inout uint passes) {
-    return vkpTraverse(false, o, d, tmin, tmax, primIndex, t, ab, passes);
+    uint inst;
+    return vkpTraverse(false, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
 }
 
 /// Shadow rays: true if anything is hit with t in (tmin, tmax); stops at the first hit.
@@ -144,7 +141,16 @@ bool traceAny(vec3 o, vec3 d, float tmin, float tmax, inout uint passes) {
     uint primIndex;
     float t;
     vec2 ab;
-    return vkpTraverse(true, o, d, tmin, tmax, primIndex, t, ab, passes);
+    uint inst;
+    return vkpTraverse(true, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
+}
+
+/// Closest hit, as traceClosest; inst receives the instance whose triangle was hit (two-level BVH,
+/// shared/instance.h; GPU_NO_INSTANCE: a top-level primitive, else primIndex and ab are the
+/// object-space triangle and its surface parameters).
+bool traceClosestInstance(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
+                          out vec2 ab, out uint inst, inout uint passes) {
+    return vkpTraverse(false, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
 }
 
 #endif  // VKP_BVH_WIDE

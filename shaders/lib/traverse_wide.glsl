@@ -14,12 +14,30 @@
 // children by entry distance (a 5-comparator network), descends into the nearest and pushes the
 // others far to near, or pops. Stack: VKP_WIDE_STACK (96) entries, enough for the builder's trees
 // (host/bvh/traverse_wide_cpu.h); an overflow drops the child and reports the trace cut short.
+// Two levels (instances): a top-level leaf primitive of kind PRIM_INSTANCE starts the same loop
+// (lib/traverse_wide_loop.glsl, a second function with its own stack) on its mesh's bottom level,
+// in object space; the found hit carries across, since t is shared.
 #ifndef VKP_TRAVERSE_WIDE_GLSL
 #define VKP_TRAVERSE_WIDE_GLSL
 
 #include "shared/intersect.h"
+#include "shared/instance.h"
 #include "shared/wide_bvh.h"
 #include "lib/leaf_test.glsl"
+
+// Instances (two-level BVH, shared/instance.h, host/bvh/two_level.h): compiled in when the includer
+// defines VKP_HAS_INSTANCES as a true expression (a specialization constant in the renderer) and
+// GpuInstance fetchInstance(uint i).
+#ifndef VKP_HAS_INSTANCES
+#define VKP_HAS_INSTANCES false
+GpuInstance fetchInstance(uint i) {
+    GpuInstance g;
+    g.info = uvec4(0u);
+    g.w2o0 = vec4(0.0); g.w2o1 = vec4(0.0); g.w2o2 = vec4(0.0);
+    g.o2w0 = vec4(0.0); g.o2w1 = vec4(0.0); g.o2w2 = vec4(0.0);
+    return g;
+}
+#endif
 
 #ifndef VKP_MAX_PASSES
 #define VKP_MAX_PASSES 60000u
@@ -43,94 +61,68 @@
         }                                       \
     }
 
+// The bottom level of an instance (shared/instance.h): its triangles are plain leaf primitives.
+#define VKP_WIDE_LOOP_FN vkpWideLoopBottom
+#define VKP_WIDE_LEAF(p) vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, instId)
+#include "lib/traverse_wide_loop.glsl"
+#undef VKP_WIDE_LOOP_FN
+#undef VKP_WIDE_LEAF
+
+/// A top-level leaf primitive p: with VKP_HAS_INSTANCES, a PRIM_INSTANCE maps the ray into its
+/// object space (the direction not renormalised, so t is shared) and traverses its mesh's bottom
+/// level from its root (+1 pass: that loop's exit); anything else is an ordinary leaf test.
+bool vkpWideTopLeaf(const bool anyHit, uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
+                    inout vec2 abHit, inout uint inst, inout uint passes) {
+    if (VKP_HAS_INSTANCES) {
+        GpuPrim pr = fetchPrim(p);
+        if (primKind(pr) == PRIM_INSTANCE) {
+            uint id = primMaterial(pr);
+            GpuInstance ins = fetchInstance(id);
+            passes += 1u;
+            return vkpWideLoopBottom(anyHit, ins.info.x, instanceRayOrigin(ins, o), instanceRayDirection(ins, d), tmin, t,
+                                     primIndex, abHit, inst, id, passes);
+        }
+    }
+    return vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE);
+}
+
+#define VKP_WIDE_LOOP_FN vkpWideLoopTop
+#define VKP_WIDE_LEAF(p) vkpWideTopLeaf(anyHit, p, o, d, tmin, t, primIndex, abHit, inst, passes)
+#include "lib/traverse_wide_loop.glsl"
+#undef VKP_WIDE_LOOP_FN
+#undef VKP_WIDE_LEAF
+
 bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, out uint primIndex,
-                     out float tHit, out vec2 abHit, inout uint passes) {
+                     out float tHit, out vec2 abHit, out uint inst, inout uint passes) {
     primIndex = GPU_NODE_EMPTY;
     tHit = VKP_FAR;
     abHit = vec2(0.0);
+    inst = GPU_NO_INSTANCE;
     bool nanRay = any(isnan(o)) || any(isnan(d));
     if (nanRay || !(tmin < tmax)) return false;
     float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
-    vec3 invD = safeInverse(d);
-    uint stack[VKP_WIDE_STACK];
-    uint sp = 0u;
-    uint node = 0u;
-    bool finished = false;
-    bool overflow = false;
-    bool found = false;
-    while (passes < uint(VKP_MAX_PASSES)) {
-        passes += 2u;
-        GpuWideNode n = fetchWideNode(node);
-        vec4 tb;
-        tb.x = intersectBox(vec3(n.loX.x, n.loY.x, n.loZ.x), vec3(n.hiX.x, n.hiY.x, n.hiZ.x), o, invD, tmin, t);
-        tb.y = intersectBox(vec3(n.loX.y, n.loY.y, n.loZ.y), vec3(n.hiX.y, n.hiY.y, n.hiZ.y), o, invD, tmin, t);
-        tb.z = intersectBox(vec3(n.loX.z, n.loY.z, n.loZ.z), vec3(n.hiX.z, n.hiY.z, n.hiZ.z), o, invD, tmin, t);
-        tb.w = intersectBox(vec3(n.loX.w, n.loY.w, n.loZ.w), vec3(n.hiX.w, n.hiY.w, n.hiZ.w), o, invD, tmin, t);
-        bvec4 hit = lessThan(tb, vec4(VKP_FAR));
-        uvec4 nLeaf = mix(uvec4(0u), n.count, hit);
-        uint s1 = nLeaf.x;
-        uint s2 = s1 + nLeaf.y;
-        uint s3 = s2 + nLeaf.z;
-        uint total = s3 + nLeaf.w;
-        for (uint i = 0u; i < total; ++i) {
-            passes += 1u;
-            uint p = (i < s1) ? n.index.x + i
-                   : (i < s2) ? n.index.y + (i - s1)
-                   : (i < s3) ? n.index.z + (i - s2)
-                              : n.index.w + (i - s3);
-            if (vkpLeafHit(p, o, d, tmin, t, primIndex, abHit)) {
-                found = true;
-                if (anyHit) break;
-            }
-        }
-        if (anyHit && found) {
-            finished = true;
-            break;
-        }
-        bvec4 inner = bvec4(uvec4(hit) * uvec4(equal(n.count, uvec4(0u))));
-#ifdef VKP_WIDE_RECULL
-        // Bench variant: also drop inner children entered beyond the hit the leaves just found (the
-        // box test repeated with tmax = t: enter <= t * VKP_BOX_EXIT_SCALE, intersect.h).
-        inner = bvec4(uvec4(inner) * uvec4(lessThanEqual(tb, vec4(t * VKP_BOX_EXIT_SCALE))));
-#endif
-#ifdef VKP_WIDE_UNORDERED
-        // Bench variant: visit hit inner children in slot order (the keys are slot numbers), to
-        // measure what the nearest-first order buys; same sorting work.
-        vec4 key = mix(vec4(VKP_FAR), vec4(0.0, 1.0, 2.0, 3.0), inner);
-#else
-        vec4 key = mix(vec4(VKP_FAR), tb, inner);
-#endif
-        uvec4 child = n.index;
-        VKP_SORT_PAIR(0, 1)
-        VKP_SORT_PAIR(2, 3)
-        VKP_SORT_PAIR(0, 2)
-        VKP_SORT_PAIR(1, 3)
-        VKP_SORT_PAIR(1, 2)
-        VKP_WIDE_PUSH(3)
-        VKP_WIDE_PUSH(2)
-        VKP_WIDE_PUSH(1)
-        if (key[0] < VKP_FAR) {
-            node = child[0];
-        } else if (sp > 0u) {
-            sp -= 1u;
-            node = stack[sp];
-        } else {
-            finished = true;
-            break;
-        }
-    }
-    if (!finished || overflow) passes = max(passes, uint(VKP_MAX_PASSES));
+    bool found = vkpWideLoopTop(anyHit, 0u, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE, passes);
     tHit = found ? t : VKP_FAR;
+    if (!found) inst = GPU_NO_INSTANCE;
     return found;
 }
 
 #undef VKP_SORT_PAIR
 #undef VKP_WIDE_PUSH
 
+/// Closest hit, as lib/traverse.glsl's traceClosest, through the 4-wide BVH; inst receives the
+/// instance whose triangle was hit (GPU_NO_INSTANCE: a top-level primitive; primIndex and ab are then
+/// the object-space triangle and its surface parameters).
+bool traceClosestInstance(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
+                          out vec2 ab, out uint inst, inout uint passes) {
+    return vkpTraverseWide(false, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
+}
+
 /// Closest hit, as lib/traverse.glsl's traceClosest, through the 4-wide BVH.
 bool traceClosest(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
                   out vec2 ab, inout uint passes) {
-    return vkpTraverseWide(false, o, d, tmin, tmax, primIndex, t, ab, passes);
+    uint inst;
+    return vkpTraverseWide(false, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
 }
 
 /// Shadow rays: true if anything is hit with t in (tmin, tmax); stops at the first hit.
@@ -138,7 +130,8 @@ bool traceAny(vec3 o, vec3 d, float tmin, float tmax, inout uint passes) {
     uint primIndex;
     float t;
     vec2 ab;
-    return vkpTraverseWide(true, o, d, tmin, tmax, primIndex, t, ab, passes);
+    uint inst;
+    return vkpTraverseWide(true, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
 }
 
 #endif

@@ -13,7 +13,9 @@ VKP_BEGIN
 const uint PRIM_SPHERE = 0u;
 const uint PRIM_QUAD = 1u;      // parallelogram Q + a u + b v, a,b in [0,1]
 const uint PRIM_TRIANGLE = 2u;  // v0 + a (v1 - v0) + b (v2 - v0), a,b >= 0, a + b <= 1
-// Header word (p0.w as bits): kind | (material << 2). Material indices < 2^30.
+const uint PRIM_INSTANCE = 3u;  // top level of a two-level BVH: an instance of a mesh (shared/instance.h)
+// Header word (p0.w as bits): kind | (material << 2). Material indices < 2^30. PRIM_INSTANCE:
+// kind | (instance index << 2), every coordinate NaN (shared/instance.h).
 // p0.xyz: sphere centre | quad Q | triangle v0        (world units)
 // p1.xyz: -             | quad u | triangle v1; p1.w: sphere radius (else 0)
 // p2.xyz: -             | quad v | triangle v2; p2.w: bits of light index + 1 (0: not a light)

@@ -215,6 +215,13 @@ VKP_FN vec3 spawnRayOrigin(GpuPrim p, vec2 ab, vec3 x, vec3 n) {
     return offsetRayOrigin(x + primOffsetDistance(p, ab, n) * n, n);
 }
 
+/// spawnRayOrigin with `extra` world units (>= 0) added to primOffsetDistance: the rounding an
+/// instance's transform adds (shared/instance.h instanceOffsetDistance). extra = 0 gives
+/// spawnRayOrigin's point bit for bit.
+VKP_FN vec3 spawnRayOriginExtra(GpuPrim p, vec2 ab, vec3 x, vec3 n, float extra) {
+    return offsetRayOrigin(x + (primOffsetDistance(p, ab, n) + extra) * n, n);
+}
+
 /// True when point x lies in the plane of flat primitive p, within the rounding band that
 /// primOffsetDistance bounds for any point of p: from there p subtends no solid angle, so light
 /// sampling must not pick it (a direction "towards" it is tangent to x's surface up to rounding, and

@@ -14,6 +14,9 @@
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
 //       its passes << 1 (starting from 0)
+//   With -DVKP_INSTANCES (either layout; two-level BVH, shared/instance.h): binding 4 (usamplerBuffer
+//   RGBA32UI) holds the GpuInstances, and binding 5 (SSBO, written) per ray the instance of the
+//   closest hit (GPU_NO_INSTANCE for a top-level primitive or a miss).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -79,6 +82,25 @@ GpuPrim fetchPrim(uint i) {
     return p;
 }
 
+#ifdef VKP_INSTANCES
+#include "shared/instance.h"
+layout(binding = 4) uniform usamplerBuffer instanceTexels;
+layout(std430, binding = 5) writeonly buffer InstanceResults { uint instanceResults[]; };
+#define VKP_HAS_INSTANCES true
+GpuInstance fetchInstance(uint i) {
+    int b = int(i * GPU_INSTANCE_TEXELS);
+    GpuInstance g;
+    g.info = texelFetch(instanceTexels, b);
+    g.w2o0 = uintBitsToFloat(texelFetch(instanceTexels, b + 1));
+    g.w2o1 = uintBitsToFloat(texelFetch(instanceTexels, b + 2));
+    g.w2o2 = uintBitsToFloat(texelFetch(instanceTexels, b + 3));
+    g.o2w0 = uintBitsToFloat(texelFetch(instanceTexels, b + 4));
+    g.o2w1 = uintBitsToFloat(texelFetch(instanceTexels, b + 5));
+    g.o2w2 = uintBitsToFloat(texelFetch(instanceTexels, b + 6));
+    return g;
+}
+#endif
+
 #include "lib/traverse.glsl"  // lib/traverse_wide.glsl with VKP_BVH_WIDE
 
 void main() {
@@ -92,7 +114,13 @@ void main() {
     float t;
     vec2 ab;
     uint passesClosest = 0u;
+#ifdef VKP_INSTANCES
+    uint inst;
+    traceClosestInstance(od.xyz, dd.xyz, od.w, dd.w, prim, t, ab, inst, passesClosest);
+    instanceResults[id] = inst;
+#else
     traceClosest(od.xyz, dd.xyz, od.w, dd.w, prim, t, ab, passesClosest);
+#endif
     uint passesAny = 0u;
     bool anyHit = traceAny(od.xyz, dd.xyz, od.w, dd.w, passesAny);
     results[id] = uvec4(floatBitsToUint(t), prim, passesClosest, (anyHit ? 1u : 0u) | (passesAny << 1u));

@@ -13,6 +13,7 @@
 
 #include "bvh/flatten.h"
 #include "bvh/traverse_cpu.h"
+#include "shared/instance.h"
 #include "bvh_test_scenes.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
@@ -22,6 +23,7 @@ namespace vkp::test {
 
 struct BvhComparison {
     int mismatches = 0, passDifferences = 0, hits = 0, cutShort = 0;
+    int instanceHits = 0;  ///< closest hits on an instance's triangle (two-level BVH)
 };
 
 /// The CPU twin of one layout: closest hit (any = false) or any hit (any = true) of a ray.
@@ -31,10 +33,13 @@ using CpuTrace = std::function<TraceResult(const Ray&, bool any)>;
 /// nodes, prims, results) on `nodeBytes` and `prims` for every ray; returns its uvec4 per ray
 /// (t bits, primitive, closest-hit passes, any-hit bit | any-hit passes << 1). Rows of 1024
 /// workgroups of 64 rays: the kernel maps invocation (x, y) to ray x + y * (groups in x) * 64.
+/// With instances (the kernel variant bvh_trace_wide_instances), binding 4 holds them and binding 5
+/// receives each ray's closest-hit instance, returned in *instanceOut.
 inline std::vector<glm::uvec4> runTraversalKernel(VulkanDevice& dev, std::span<const std::uint32_t> spirv,
                                                   const void* nodeBytes, std::size_t nodeSize,
                                                   const std::vector<gpu::GpuPrim>& prims, const std::vector<Ray>& rays,
-                                                  const char* what) {
+                                                  const char* what, std::span<const gpu::GpuInstance> instances = {},
+                                                  std::vector<std::uint32_t>* instanceOut = nullptr) {
     std::vector<glm::vec4> rayData;
     for (const Ray& r : rays) {
         rayData.emplace_back(r.o, r.tmin);
@@ -49,31 +54,52 @@ inline std::vector<glm::uvec4> runTraversalKernel(VulkanDevice& dev, std::span<c
     GpuBuffer primBuf(dev, prims.size() * sizeof(gpu::GpuPrim), texel);
     primBuf.upload(prims.data(), prims.size() * sizeof(gpu::GpuPrim));
     GpuBuffer outBuf(dev, rays.size() * sizeof(glm::uvec4), storage);
+    const bool withInstances = !instances.empty();
+    GpuBuffer instBuf(dev, std::max<std::size_t>(instances.size(), 1) * sizeof(gpu::GpuInstance), texel);
+    if (withInstances) instBuf.upload(instances.data(), instances.size() * sizeof(gpu::GpuInstance));
+    GpuBuffer instOutBuf(dev, std::max<std::size_t>(rays.size(), 1) * sizeof(std::uint32_t), storage);
     ComputePipelineDesc desc;
     desc.spirv = spirv;
     desc.bindings = {vk::DescriptorType::eStorageBuffer, vk::DescriptorType::eUniformTexelBuffer,
                      vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer};
+    if (withInstances) {
+        desc.bindings.push_back(vk::DescriptorType::eUniformTexelBuffer);
+        desc.bindings.push_back(vk::DescriptorType::eStorageBuffer);
+    }
     ComputePipeline pipe(dev, desc);
     const auto nodeView = nodeBuf.texelView();
     const auto primView = primBuf.texelView();
+    const auto instView = instBuf.texelView();
     pipe.bindBuffer(0, rayBuf.buffer());
     pipe.bindTexelView(1, *nodeView);
     pipe.bindTexelView(2, *primView);
     pipe.bindBuffer(3, outBuf.buffer());
+    if (withInstances) {
+        pipe.bindTexelView(4, *instView);
+        pipe.bindBuffer(5, instOutBuf.buffer());
+    }
     const auto groups = std::uint32_t((rays.size() + 63) / 64);
     const std::uint32_t gx = std::max(1u, std::min(groups, 1024u)), gy = (groups + gx - 1) / gx;
     dev.submitAndWait([&](vk::raii::CommandBuffer& cmd) { pipe.recordDispatch(cmd, gx, gy, nullptr, 0); });
     std::vector<glm::uvec4> out(rays.size());
     outBuf.download(out.data(), out.size() * sizeof(glm::uvec4));
+    if (withInstances && instanceOut) {
+        instanceOut->resize(rays.size());
+        instOutBuf.download(instanceOut->data(), rays.size() * sizeof(std::uint32_t));
+    }
     dev.instance().throwIfValidationMessages(std::string("in the ") + what + " traversal test");
     return out;
 }
 
 /// runTraversalKernel, then every ray's result compared with `cpu`.
+/// With instances, the closest hit's instance must agree too.
 inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::uint32_t> spirv, const void* nodeBytes,
                                       std::size_t nodeSize, const std::vector<gpu::GpuPrim>& prims,
-                                      const std::vector<Ray>& rays, const CpuTrace& cpu, const char* what) {
-    const std::vector<glm::uvec4> out = runTraversalKernel(dev, spirv, nodeBytes, nodeSize, prims, rays, what);
+                                      const std::vector<Ray>& rays, const CpuTrace& cpu, const char* what,
+                                      std::span<const gpu::GpuInstance> instances = {}) {
+    std::vector<std::uint32_t> gpuInstance;
+    const std::vector<glm::uvec4> out =
+        runTraversalKernel(dev, spirv, nodeBytes, nodeSize, prims, rays, what, instances, &gpuInstance);
     BvhComparison c;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const TraceResult closest = cpu(rays[i], false);
@@ -83,10 +109,14 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
         const bool gpuAny = out[i].w & 1u;
         c.hits += closest.hit;
         c.cutShort += closest.cutShort() || any.cutShort();
-        const bool same = std::memcmp(&gpuT, &closest.t, sizeof gpuT) == 0 && out[i].y == closest.prim && gpuAny == any.hit;
+        const std::uint32_t gpuInst = instances.empty() ? gpu::GPU_NO_INSTANCE : gpuInstance[i];
+        c.instanceHits += closest.hit && closest.instance != gpu::GPU_NO_INSTANCE;
+        const bool same = std::memcmp(&gpuT, &closest.t, sizeof gpuT) == 0 && out[i].y == closest.prim &&
+                          gpuAny == any.hit && gpuInst == closest.instance;
         if (!same && c.mismatches++ < 5)
-            ADD_FAILURE() << what << " ray " << i << ": gpu t " << gpuT << " prim " << out[i].y << " any " << gpuAny
-                          << " | cpu t " << closest.t << " prim " << closest.prim << " any " << any.hit;
+            ADD_FAILURE() << what << " ray " << i << ": gpu t " << gpuT << " prim " << out[i].y << " instance " << gpuInst
+                          << " any " << gpuAny << " | cpu t " << closest.t << " prim " << closest.prim << " instance "
+                          << closest.instance << " any " << any.hit;
         if (out[i].z != closest.passes || (out[i].w >> 1) != any.passes) ++c.passDifferences;
     }
     return c;

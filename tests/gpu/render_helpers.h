@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bvh/flatten.h"
+#include "bvh/two_level.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "vk/device.h"
@@ -25,7 +26,7 @@ inline TestRender makeRender(VulkanDevice& dev, const std::filesystem::path& fil
     r.scene = loadSceneJson(file);
     r.scene.camera.width = width;
     r.scene.camera.height = height;
-    r.bvh = buildFlatBvh(r.scene);
+    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
     RendererOptions o;
     o.sampler = sampler;
     o.samplesPerDispatch = samplesPerDispatch;

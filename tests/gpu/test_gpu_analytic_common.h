@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "bvh/flatten.h"
+#include "bvh/two_level.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -180,7 +181,7 @@ struct SceneRender {
 inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, const RendererOptions& o) {
     SceneRender r;
     r.scene = scene;
-    r.bvh = buildFlatBvh(r.scene);
+    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
     r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
     return r;
 }

@@ -109,5 +109,14 @@ TEST(CliArgs, UsageErrors) {
     EXPECT_EQ(errorOf({"render", "s.json", "--spp", "1"}), "");
 }
 
+TEST(CliArgs, InstancingAutoByDefaultFlattenOnRequestAlsoForInfo) {
+    EXPECT_TRUE(parse({"render", "s.glb"}).instancing);
+    EXPECT_FALSE(parse({"render", "s.glb", "--instancing", "flatten"}).instancing);
+    EXPECT_TRUE(parse({"render", "s.glb", "--instancing", "auto"}).instancing);
+    EXPECT_FALSE(parse({"info", "s.glb", "--instancing", "flatten"}).instancing);
+    EXPECT_EQ(errorOf({"render", "s.glb", "--instancing", "never"}),
+              "usage: --instancing must be auto or flatten, got 'never' (see 'vkpath --help')");
+}
+
 }  // namespace
 }  // namespace vkp
