@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bvh/traverse_leaf_cpu.h"
 #include "shared/intersect.h"
 
 namespace vkp {
@@ -56,24 +57,12 @@ bool loop(const Arrays& a, std::uint32_t root, const vec3& o, const vec3& d, flo
             passes += 1u;
             const uint p = (i < nl) ? il + i : ir + (i - nl);
             const GpuPrim& pr = at(a.prims, p, "primitive");
-            bool hit = false;
-            if (instId == GPU_NO_INSTANCE && primKind(pr) == PRIM_INSTANCE) {
-                const uint id = primMaterial(pr);
+            const bool hit = leafPrimHitCpu(pr, p, o, d, tmin, t, r, instId, [&](std::uint32_t id) {
                 const GpuInstance& inst = at(a.instances, id, "instance");
                 passes += 1u;  // the bottom level's loop exit
-                hit = loop<kAnyHit>(a, inst.info.y, instanceRayOrigin(inst, o), instanceRayDirection(inst, d), tmin, t, r,
-                                    id, passes, maxPasses);
-            } else {
-                vec2 ab;
-                const float th = intersectPrim(pr, o, d, tmin, t, ab);
-                if (th < t) {
-                    t = th;
-                    r.prim = p;
-                    r.ab = ab;
-                    r.instance = instId;
-                    hit = true;
-                }
-            }
+                return loop<kAnyHit>(a, inst.info.y, instanceRayOrigin(inst, o), instanceRayDirection(inst, d), tmin, t, r, id,
+                                     passes, maxPasses);
+            });
             if (hit) {
                 found = true;
                 if (kAnyHit) break;
