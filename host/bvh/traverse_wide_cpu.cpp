@@ -2,11 +2,9 @@
 #include "bvh/traverse_wide_cpu.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 #include <utility>
 
-#include "bvh/traverse_leaf_cpu.h"
+#include "bvh/traverse_shared_cpu.h"
 #include "shared/intersect.h"
 
 namespace vkp {
@@ -16,10 +14,7 @@ using namespace vkp::gpu;
 
 template <class T>
 const T& at(std::span<const T> a, std::uint32_t i, const char* what) {
-    if (i >= a.size())
-        throw std::out_of_range(std::string("wide BVH traversal: ") + what + " index " + std::to_string(i) +
-                                " out of range (" + std::to_string(a.size()) + ")");
-    return a[i];
+    return traversalAt(a, i, "wide BVH traversal", what);
 }
 
 /// Compare-and-swap of the sorting network: after it, key[i] <= key[j] (swaps only on key[j] < key[i]).
@@ -119,18 +114,9 @@ bool loop(const Arrays& a, std::uint32_t root, const vec3& o, const vec3& d, flo
 template <bool kAnyHit>
 TraceResult traverse(const Arrays& a, const vec3& o, const vec3& d, float tmin, float tmax, std::uint32_t passes,
                      std::uint32_t maxPasses) {
-    TraceResult r;
-    r.passes = passes;
-    r.maxPasses = maxPasses;
-    const bool nanRay = glm::any(glm::isnan(o)) || glm::any(glm::isnan(d));
-    if (nanRay || !(tmin < tmax)) return r;
-    float t = (tmax < VKP_FAR) ? tmax : VKP_FAR;
-    const bool found = loop<kAnyHit>(a, 0u, o, d, tmin, t, r, GPU_NO_INSTANCE, passes, maxPasses);
-    r.passes = passes;
-    r.hit = found;
-    r.t = found ? t : VKP_FAR;
-    if (!found) r.instance = GPU_NO_INSTANCE;
-    return r;
+    return traverseFromTop(o, d, tmin, tmax, passes, maxPasses, [&](float& t, TraceResult& r, std::uint32_t& p) {
+        return loop<kAnyHit>(a, 0u, o, d, tmin, t, r, GPU_NO_INSTANCE, p, maxPasses);
+    });
 }
 
 }  // namespace

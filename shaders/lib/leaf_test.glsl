@@ -1,5 +1,5 @@
 // The test of one leaf primitive, shared by the binary (lib/traverse.glsl) and the 4-wide
-// (lib/traverse_wide.glsl) traversal (its CPU twin: host/bvh/traverse_leaf_cpu.h): the includer
+// (lib/traverse_wide.glsl) traversal (its CPU twin: host/bvh/traverse_shared_cpu.h): the includer
 // defines fetchPrim(uint) and, optionally,
 // VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit: alpha, lib/alpha.glsl).
 #ifndef VKP_LEAF_TEST_GLSL
