@@ -85,23 +85,13 @@ GpuInstance fetchInstance(uint i) {
 #undef VKP_BIN_LOOP_FN
 #undef VKP_BIN_LEAF
 
-/// A top-level leaf primitive p: a PRIM_INSTANCE (with VKP_HAS_INSTANCES) maps the ray into its
-/// object space and traverses its mesh's bottom level from its binary root (+1 pass: that loop's
-/// exit); anything else is an ordinary leaf test.
-bool vkpBinaryTopLeaf(const bool anyHit, uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
-                      inout vec2 abHit, inout uint inst, inout uint passes) {
-    if (VKP_HAS_INSTANCES) {
-        GpuPrim pr = fetchPrim(p);
-        if (primKind(pr) == PRIM_INSTANCE) {
-            uint id = primMaterial(pr);
-            GpuInstance ins = fetchInstance(id);
-            passes += 1u;
-            return vkpBinaryLoopBottom(anyHit, ins.info.y, instanceRayOrigin(ins, o), instanceRayDirection(ins, d), tmin, t,
-                                       primIndex, abHit, inst, id, passes);
-        }
-    }
-    return vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE);
-}
+#define VKP_TOP_LEAF_FN vkpBinaryTopLeaf
+#define VKP_BOTTOM_LOOP_FN vkpBinaryLoopBottom
+#define VKP_INSTANCE_ROOT(ins) ins.info.y
+#include "lib/top_leaf.glsl"
+#undef VKP_TOP_LEAF_FN
+#undef VKP_BOTTOM_LOOP_FN
+#undef VKP_INSTANCE_ROOT
 
 #define VKP_BIN_LOOP_FN vkpBinaryLoopTop
 #define VKP_BIN_LEAF(p) vkpBinaryTopLeaf(anyHit, p, o, d, tmin, t, primIndex, abHit, inst, passes)

@@ -68,23 +68,13 @@ GpuInstance fetchInstance(uint i) {
 #undef VKP_WIDE_LOOP_FN
 #undef VKP_WIDE_LEAF
 
-/// A top-level leaf primitive p: with VKP_HAS_INSTANCES, a PRIM_INSTANCE maps the ray into its
-/// object space (the direction not renormalised, so t is shared) and traverses its mesh's bottom
-/// level from its root (+1 pass: that loop's exit); anything else is an ordinary leaf test.
-bool vkpWideTopLeaf(const bool anyHit, uint p, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
-                    inout vec2 abHit, inout uint inst, inout uint passes) {
-    if (VKP_HAS_INSTANCES) {
-        GpuPrim pr = fetchPrim(p);
-        if (primKind(pr) == PRIM_INSTANCE) {
-            uint id = primMaterial(pr);
-            GpuInstance ins = fetchInstance(id);
-            passes += 1u;
-            return vkpWideLoopBottom(anyHit, ins.info.x, instanceRayOrigin(ins, o), instanceRayDirection(ins, d), tmin, t,
-                                     primIndex, abHit, inst, id, passes);
-        }
-    }
-    return vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, GPU_NO_INSTANCE);
-}
+#define VKP_TOP_LEAF_FN vkpWideTopLeaf
+#define VKP_BOTTOM_LOOP_FN vkpWideLoopBottom
+#define VKP_INSTANCE_ROOT(ins) ins.info.x
+#include "lib/top_leaf.glsl"
+#undef VKP_TOP_LEAF_FN
+#undef VKP_BOTTOM_LOOP_FN
+#undef VKP_INSTANCE_ROOT
 
 #define VKP_WIDE_LOOP_FN vkpWideLoopTop
 #define VKP_WIDE_LEAF(p) vkpWideTopLeaf(anyHit, p, o, d, tmin, t, primIndex, abHit, inst, passes)
