@@ -46,7 +46,9 @@ render options:
   --sampler S             bsdf | light | mixture (the book's) | mis (default)
   --sequence Q            sobol (default: Owen-scrambled Sobol' points) | random (independent numbers)
   --light-pick P          power (default: emitters in proportion to their power) | uniform
-  --light-sampling L      solid-angle (default for quads/triangles) | area (the book's)
+  --light-sampling L      quads/triangles: auto (default: solid angle where the light looks large, else
+                          area) | solid-angle (wherever precise) | area (the book's)
+  --solid-angle-min SR    auto's switch: solid angle from points where area/distance^2 >= SR (default 0.2)
   --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
   --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full
@@ -100,6 +102,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         return v;
     };
     bool renderOnly = false;
+    bool solidAngleMinGiven = false;
     while (i < args.size()) {
         const std::string f = args[i++];
         if (f == "--validate") { a.validate = true; continue; }
@@ -136,7 +139,10 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             } else if (f == "--light-sampling") {
                 const std::string s = value(f);
                 if (!parseLightSampling(s, a.lightSampling))
-                    usage("--light-sampling must be solid-angle or area, got '" + s + "'");
+                    usage("--light-sampling must be auto, solid-angle or area, got '" + s + "'");
+            } else if (f == "--solid-angle-min") {
+                a.solidAngleMinSize = float(parseDouble(f, value(f), 0.0, 1e3));
+                solidAngleMinGiven = true;
             } else if (f == "--workgroup") {
                 const std::string s = value(f);
                 const std::size_t x = s.find('x');
@@ -179,6 +185,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
     if (renderOnly && a.command != Command::Render) usage("render options are only valid with 'vkpath render'");
     if (!a.errorLog.empty() && a.reference.empty()) usage("--error-log needs --reference");
+    if (solidAngleMinGiven && a.lightSampling != LightSampling::Auto)
+        usage("--solid-angle-min applies to --light-sampling auto only");
     return a;
 }
 

@@ -23,7 +23,8 @@ struct CliArgs {
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;         // --sequence random|sobol
     LightPick lightPick = LightPick::Power;      // --light-pick power|uniform
-    LightSampling lightSampling = LightSampling::SolidAngle;  // --light-sampling solid-angle|area
+    LightSampling lightSampling = LightSampling::Auto;  // --light-sampling auto|solid-angle|area
+    float solidAngleMinSize = kSolidAngleMinSize;       // --solid-angle-min SR (auto's switch)
     std::uint32_t workgroupX = 8, workgroupY = 8;  // --workgroup WxH
     bool linearTiles = false;                      // --tile-order linear
     bool fullVariant = false;                    // --variant full

@@ -90,6 +90,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     ro.sequence = a.sequence;
     ro.lightPick = a.lightPick;
     ro.lightSampling = a.lightSampling;
+    ro.solidAngleMinSize = a.solidAngleMinSize;
     ro.workgroupX = a.workgroupX;
     ro.workgroupY = a.workgroupY;
     ro.linearTiles = a.linearTiles;
@@ -153,6 +154,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.sequence = sequenceName(a.sequence);
         st.lightPick = lightPickName(a.lightPick);
         st.lightSampling = lightSamplingName(a.lightSampling);
+        st.solidAngleMinSize = a.lightSampling == LightSampling::Auto ? a.solidAngleMinSize : 0.0f;
         st.workgroup = std::to_string(a.workgroupX) + "x" + std::to_string(a.workgroupY);
         st.tileOrder = a.linearTiles ? "linear" : "scrambled";
         st.variant = renderer.features().name();
@@ -213,6 +215,7 @@ int runInfo(const CliArgs& a) {
     Features f = sceneFeatures(scene, a.sampler);
     f.sequence = a.sequence;
     f.lightSampling = a.lightSampling;
+    f.solidAngleMinSize = a.solidAngleMinSize;
     std::printf("scene        %s\n", a.scene.string().c_str());
     std::printf("image        %ux%u, %u spp, max depth %u, seed %u\n", scene.camera.width, scene.camera.height,
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);

@@ -1,5 +1,8 @@
 #include "render/features.h"
 
+#include <bit>
+#include <cstdio>
+
 #include "render/environment.h"
 #include "render/texture_pack.h"
 
@@ -41,10 +44,18 @@ bool parseLightPick(const std::string& name, LightPick& out) {
     return true;
 }
 
-const char* lightSamplingName(LightSampling s) { return s == LightSampling::Area ? "area" : "solid-angle"; }
+const char* lightSamplingName(LightSampling s) {
+    switch (s) {
+        case LightSampling::Area: return "area";
+        case LightSampling::SolidAngle: return "solid-angle";
+        case LightSampling::Auto: return "auto";
+    }
+    return "?";
+}
 
 bool parseLightSampling(const std::string& name, LightSampling& out) {
-    if (name == "solid-angle") out = LightSampling::SolidAngle;
+    if (name == "auto") out = LightSampling::Auto;
+    else if (name == "solid-angle") out = LightSampling::SolidAngle;
     else if (name == "area") out = LightSampling::Area;
     else return false;
     return true;
@@ -53,8 +64,9 @@ bool parseLightSampling(const std::string& name, LightSampling& out) {
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
             sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling == LightSampling::SolidAngle,
-            instances, workgroupX, workgroupY};
+            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling != LightSampling::Area,
+            instances, workgroupX, workgroupY,
+            std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f)};
 }
 
 std::string Features::name() const {
@@ -83,7 +95,12 @@ std::string Features::name() const {
     out += samplerName(sampler);
     out += " sequence:";
     out += sequenceName(sequence);
-    if (lightSampling == LightSampling::Area) out += " light-sampling:area";
+    if (lightSampling != LightSampling::Auto) out += std::string(" light-sampling:") + lightSamplingName(lightSampling);
+    if (lightSampling == LightSampling::Auto && solidAngleMinSize != kSolidAngleMinSize) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, " solid-angle-min:%g", double(solidAngleMinSize));
+        out += buf;
+    }
     if (defocus) out += " defocus";
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";

@@ -31,13 +31,20 @@ const char* lightPickName(LightPick p);
 bool parseLightPick(const std::string& name, LightPick& out);
 
 /// How next-event estimation samples a point on a quad or triangle light: uniformly in the solid
-/// angle it subtends (default; Urena et al. 2013 for rectangles, Arvo 1995 for triangles) or
-/// uniformly in area (the book's, `--light-sampling area`, for comparison). `mixture` always
-/// samples area, as the book does.
-enum class LightSampling : std::uint32_t { SolidAngle = 0, Area = 1 };
+/// angle it subtends (Urena et al. 2013 for rectangles, Arvo 1995 for triangles) or uniformly in
+/// area (the book's). `Auto` (default) samples in solid angle only from points where the light
+/// looks at least Features::solidAngleMinSize large (shared/rect_sampling.h apparentSize), in area
+/// elsewhere; `SolidAngle` wherever the spherical warps are precise; `Area` everywhere (for
+/// comparison). `mixture` always samples area, as the book does.
+enum class LightSampling : std::uint32_t { SolidAngle = 0, Area = 1, Auto = 2 };
 const char* lightSamplingName(LightSampling s);
-/// "solid-angle" | "area" -> LightSampling; false if unknown.
+/// "auto" | "solid-angle" | "area" -> LightSampling; false if unknown.
 bool parseLightSampling(const std::string& name, LightSampling& out);
+
+/// Default apparent size (sr: light area / squared distance to its centre) from which `auto`
+/// light sampling switches from area to solid-angle sampling. Measured at equal time on the bench
+/// scenes (README "Numbers on this machine", "Solid angle or area").
+inline constexpr float kSolidAngleMinSize = 0.2f;
 
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
@@ -53,11 +60,13 @@ struct Features {
     bool instances = false;         ///< two-level BVH: the scene has instanced meshes (shared/instance.h)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
-    LightSampling lightSampling = LightSampling::SolidAngle;
+    LightSampling lightSampling = LightSampling::Auto;
+    float solidAngleMinSize = kSolidAngleMinSize;  ///< for LightSampling::Auto (`--solid-angle-min`)
     std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..20, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
-    /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size, pathtrace.comp).
+    /// Values for constant_id 0..21, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size,
+    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

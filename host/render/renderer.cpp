@@ -102,6 +102,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
       adaptiveMinSpp_(options.adaptiveMinSpp) {
     features_.sequence = options.sequence;
     features_.lightSampling = options.lightSampling;
+    features_.solidAngleMinSize = options.solidAngleMinSize;
     features_.workgroupX = options.workgroupX;
     features_.workgroupY = options.workgroupY;
     const DeviceInfo& limits = device.info();

@@ -19,7 +19,8 @@ struct RendererOptions {
     Sequence sequence = Sequence::Sobol;  ///< where samples' random numbers come from (`--sequence`)
     bool fullVariant = false;              ///< compile every feature in (`--variant full`)
     LightPick lightPick = LightPick::Power;  ///< how NEE picks an emitter (`--light-pick`)
-    LightSampling lightSampling = LightSampling::SolidAngle;  ///< NEE on quads/triangles (`--light-sampling`)
+    LightSampling lightSampling = LightSampling::Auto;  ///< NEE on quads/triangles (`--light-sampling`)
+    float solidAngleMinSize = kSolidAngleMinSize;       ///< Auto's switch, sr (`--solid-angle-min`)
     /// Workgroup size of the kernel (x * y invocations, each one pixel) and the order its tiles are
     /// visited in: scrambled (default; balances lavapipe's threads) or row by row (`--tile-order
     /// linear`). Neither changes the image, only the speed.

@@ -1,6 +1,7 @@
 #include "render/run_stats.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <ostream>
 #include <sstream>
@@ -17,6 +18,18 @@ std::string num(double v) {
     return buf;
 }
 std::string num(std::uint64_t v) { return std::to_string(v); }
+/// A float as its shortest round-trip decimal form (0.2, not 0.200000003).
+std::string numFloat(float v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.9g", double(v));
+    for (int digits = 1; digits < 9; ++digits) {
+        char shorter[40];
+        std::snprintf(shorter, sizeof shorter, "%.*g", digits, double(v));
+        if (std::strtof(shorter, nullptr) == v) return shorter;
+    }
+    return buf;
+}
 double rate(double count, double seconds) { return seconds > 0.0 ? count / seconds : NAN; }
 
 /// Writes `"key": value` lines with commas between them.
@@ -70,6 +83,7 @@ std::string runStatsJson(const RunStats& s) {
     w.str("sequence", s.sequence);
     w.str("light_pick", s.lightPick);
     w.str("light_sampling", s.lightSampling);
+    w.raw("solid_angle_min_size", numFloat(s.solidAngleMinSize));
     w.str("workgroup", s.workgroup);
     w.str("tile_order", s.tileOrder);
     w.str("variant", s.variant);

@@ -16,7 +16,8 @@ struct RunStats {
     std::string sampler;   ///< bsdf | light | mixture
     std::string sequence;  ///< random | sobol (--sequence)
     std::string lightPick = "power";             ///< power | uniform (--light-pick)
-    std::string lightSampling = "solid-angle";   ///< solid-angle | area (--light-sampling)
+    std::string lightSampling = "auto";          ///< auto | solid-angle | area (--light-sampling)
+    float solidAngleMinSize = 0.0f;              ///< auto's switch (sr; --solid-angle-min), else 0
     std::string workgroup = "8x8";               ///< --workgroup
     std::string tileOrder = "scrambled";         ///< scrambled | linear (--tile-order)
     std::string variant;   ///< Features::name() of the pipeline

@@ -21,6 +21,9 @@ layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else
 layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
 layout(constant_id = 16) const uint SEQUENCE = 1u;   // SEQUENCE_* below (shared/sample_stream.h)
 layout(constant_id = 17) const bool SOLID_ANGLE_LIGHTS = true;  // NEE samples quads/triangles in solid angle (else area)
+// ... from points where the light's apparent size (area / squared distance to its centre, sr) is at
+// least this (shared/rect_sampling.h apparentSize; 0: everywhere; `--light-sampling auto|solid-angle`).
+layout(constant_id = 21) const float SOLID_ANGLE_MIN_SIZE = 0.0f;
 
 // intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
 #define VKP_HAS_SPHERES HAS_SPHERES

@@ -15,7 +15,8 @@ uint lightCount() { return frame.counts.x; }
 
 // Quads and triangles: the book's uniform area sampling for `mixture` (exactly as the book defines
 // it); for next-event estimation solid-angle sampling of rectangles (Urena et al. 2013) and of
-// triangles (Arvo 1995), area sampling as their fallback (shared/rect_sampling.h,
+// triangles (Arvo 1995) from points where the light looks at least SOLID_ANGLE_MIN_SIZE large,
+// area sampling elsewhere and as their fallback (shared/rect_sampling.h,
 // shared/triangle_sampling.h); `--light-sampling area` (SOLID_ANGLE_LIGHTS false) keeps area
 // sampling for every sampler, to measure what solid-angle sampling buys.
 const bool SOLID_ANGLE_QUADS = SAMPLER != SAMPLER_MIXTURE && SOLID_ANGLE_LIGHTS;
@@ -33,9 +34,9 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     if (inPrimPlane(p, x)) return s;  // a flat light seen edge-on from its own plane: no sample
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
-        s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi) : sampleQuadLight(p0, e1, e2, x, xi);
+        s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi, SOLID_ANGLE_MIN_SIZE) : sampleQuadLight(p0, e1, e2, x, xi);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
-        s = SOLID_ANGLE_QUADS ? sampleTriangleLightSolidAngle(p0, e1, e2, x, xi) : sampleTriangleLight(p0, e1, e2, x, xi);
+        s = SOLID_ANGLE_QUADS ? sampleTriangleLightSolidAngle(p0, e1, e2, x, xi, SOLID_ANGLE_MIN_SIZE) : sampleTriangleLight(p0, e1, e2, x, xi);
     return s;
 }
 
@@ -49,9 +50,9 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     if (inPrimPlane(p, x)) return 0.0f;  // as in sampleLightPrim
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
-        pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d) : pdfQuadLight(p0, e1, e2, x, d);
+        pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d, SOLID_ANGLE_MIN_SIZE) : pdfQuadLight(p0, e1, e2, x, d);
     if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
-        pdf = SOLID_ANGLE_QUADS ? pdfTriangleLightSolidAngle(p0, e1, e2, x, d) : pdfTriangleLight(p0, e1, e2, x, d);
+        pdf = SOLID_ANGLE_QUADS ? pdfTriangleLightSolidAngle(p0, e1, e2, x, d, SOLID_ANGLE_MIN_SIZE) : pdfTriangleLight(p0, e1, e2, x, d);
     return pdf;
 }
 

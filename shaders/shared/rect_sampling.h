@@ -48,6 +48,22 @@ VKP_FN float triangleSolidAngle(vec3 a, vec3 b, vec3 c) {
     return 2.0f * atan(num, den);
 }
 
+/// How large a flat light of `area` (world units^2) centred at `centre` looks from p: the area over
+/// the squared distance to the centre (sr), the solid angle it would subtend face-on. Cheap (no
+/// trigonometry) and a function of the light and p alone, so a sample and its pdf take the same
+/// branch with it. Where it is small, area sampling's pdf d^2 / (|cos| A) barely varies over the
+/// light and solid-angle sampling's setup does not pay (`--light-sampling auto`, README "Numbers").
+VKP_FN float apparentSize(float area, vec3 centre, vec3 p) {
+    vec3 d = centre - p;
+    return area / max(dot(d, d), 1.0e-30f);
+}
+
+/// Whether sampleRectLight(Q, u, v, p, ., minSize) even considers solid-angle sampling: the quad's
+/// apparentSize from p reaches minSize (sr; 0: always).
+VKP_FN bool rectLargeEnough(vec3 Q, vec3 u, vec3 v, vec3 p, float minSize) {
+    return minSize <= 0.0f || apparentSize(length(cross(u, v)), Q + 0.5f * (u + v), p) >= minSize;
+}
+
 /// Setup of the paper's algorithm 1 ("SphQuadInit").
 VKP_FN SphericalRect sphericalRectInit(vec3 Q, vec3 u, vec3 v, vec3 p) {
     SphericalRect r;
@@ -115,16 +131,24 @@ VKP_FN vec3 sphericalRectPoint(SphericalRect r, vec2 xi) {
     return r.o + xu * r.x + yv * r.y + r.z0 * r.z;
 }
 
+/// Whether sampleRectLight(Q, u, v, p, ., minSize) samples in solid angle (else in area).
+VKP_FN bool rectLightUsesSolidAngle(vec3 Q, vec3 u, vec3 v, vec3 p, float minSize) {
+    return rectLargeEnough(Q, u, v, p, minSize) && useSphericalRect(u, v, sphericalRectInit(Q, u, v, p));
+}
+
 /// Direction from p to a point of the quad Q + a u + b v: uniform in solid angle (pdf 1/S) when
+/// the quad looks at least minSize large from p (rectLargeEnough; sr, 0: always) and
 /// useSphericalRect, otherwise uniform in area (sampleQuadLight). pdf 0: no sample.
-VKP_FN LightSample sampleRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec2 xi) {
+VKP_FN LightSample sampleRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec2 xi, float minSize) {
+    if (!rectLargeEnough(Q, u, v, p, minSize)) return sampleQuadLight(Q, u, v, p, xi);
     SphericalRect r = sphericalRectInit(Q, u, v, p);
     if (!useSphericalRect(u, v, r)) return sampleQuadLight(Q, u, v, p, xi);
     return makeLightSample(p, sphericalRectPoint(r, xi), 1.0f / r.S);
 }
 
-/// Solid-angle density with which sampleRectLight(Q, u, v, p, .) produces unit direction dir.
-VKP_FN float pdfRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec3 dir) {
+/// Solid-angle density with which sampleRectLight(Q, u, v, p, ., minSize) produces unit direction dir.
+VKP_FN float pdfRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec3 dir, float minSize) {
+    if (!rectLargeEnough(Q, u, v, p, minSize)) return pdfQuadLight(Q, u, v, p, dir);
     SphericalRect r = sphericalRectInit(Q, u, v, p);
     if (!useSphericalRect(u, v, r)) return pdfQuadLight(Q, u, v, p, dir);
     vec2 ab;

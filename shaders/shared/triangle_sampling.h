@@ -71,9 +71,24 @@ VKP_FN float triangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p) {
 /// Whether sampleTriangleLightSolidAngle uses the spherical triangle for solid angle S.
 VKP_FN bool useSphericalTriangle(float S) { return S > TRI_MIN_SOLID_ANGLE && S < TRI_MAX_SOLID_ANGLE; }
 
+/// Whether sampleTriangleLightSolidAngle(v0, e1, e2, p, ., minSize) even considers solid-angle
+/// sampling: the triangle's apparentSize from p (area over squared distance to its centroid, sr)
+/// reaches minSize (0: always).
+VKP_FN bool triangleLargeEnough(vec3 v0, vec3 e1, vec3 e2, vec3 p, float minSize) {
+    return minSize <= 0.0f ||
+           apparentSize(0.5f * length(cross(e1, e2)), v0 + (e1 + e2) * (1.0f / 3.0f), p) >= minSize;
+}
+
+/// Whether sampleTriangleLightSolidAngle(v0, e1, e2, p, ., minSize) samples in solid angle.
+VKP_FN bool triangleLightUsesSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, float minSize) {
+    return triangleLargeEnough(v0, e1, e2, p, minSize) && useSphericalTriangle(triangleLightSolidAngle(v0, e1, e2, p));
+}
+
 /// Direction from p to a point of the triangle v0 + a e1 + b e2: uniform in solid angle (pdf 1/S)
-/// when useSphericalTriangle, otherwise uniform in area (sampleTriangleLight). pdf 0: no sample.
-VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi) {
+/// when the triangle looks at least minSize large from p (triangleLargeEnough; sr, 0: always) and
+/// useSphericalTriangle, otherwise uniform in area (sampleTriangleLight). pdf 0: no sample.
+VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi, float minSize) {
+    if (!triangleLargeEnough(v0, e1, e2, p, minSize)) return sampleTriangleLight(v0, e1, e2, p, xi);
     float S = triangleLightSolidAngle(v0, e1, e2, p);
     if (!useSphericalTriangle(S)) return sampleTriangleLight(v0, e1, e2, p, xi);
     vec3 a = v0 - p;
@@ -105,8 +120,9 @@ VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3
     return makeLightSample(p, v0 + b1 * e1 + b2 * e2, 1.0f / S);
 }
 
-/// Solid-angle density with which sampleTriangleLightSolidAngle(v0, e1, e2, p, .) produces dir.
-VKP_FN float pdfTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec3 dir) {
+/// Solid-angle density with which sampleTriangleLightSolidAngle(v0, e1, e2, p, ., minSize) produces dir.
+VKP_FN float pdfTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec3 dir, float minSize) {
+    if (!triangleLargeEnough(v0, e1, e2, p, minSize)) return pdfTriangleLight(v0, e1, e2, p, dir);
     float S = triangleLightSolidAngle(v0, e1, e2, p);
     if (!useSphericalTriangle(S)) return pdfTriangleLight(v0, e1, e2, p, dir);
     vec2 ab;

@@ -36,7 +36,7 @@
 //                 out0.y = fresnelDielectricExact(c, e)          (e read as eta_t / eta_i),
 //                 out0.z = dielectricReflectProbability(c, e, false) (e read as eta_i / eta_t),
 //                 out0.w = dielectricReflectProbability(c, e, true)
-// 15 RECT_LIGHT   inputs as 8 (rect_sampling.h: solid angle, area fallback)
+// 15 RECT_LIGHT   inputs as 8, in2.w = minSize (rect_sampling.h: solid angle, area fallback)
 //                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfRectLight(dir),
 //                 out1.z = 1 if the spherical rectangle is used, else 0
 // 16 GGX_VNDF     in0.xyz = v (local), in0.w = alpha, in1.xy = u     (microfacet.h)
@@ -54,7 +54,7 @@
 //                 where the table starts: item t + j holds light j's GpuLight in its in0
 //                 (light_pick.h alias pick, as scene_lights.glsl pickLightPower does it)
 //                 out0.x = bits of the picked light, out0.y = the probability its entry reports
-// 20 SPH_TRI_LIGHT inputs as 9 (triangle_sampling.h: solid angle, area fallback)
+// 20 SPH_TRI_LIGHT inputs as 9, in2.w = minSize (triangle_sampling.h: solid angle, area fallback)
 //                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfTriangleLightSolidAngle(dir),
 //                 out1.z = 1 if the spherical triangle is used, else 0
 // 21 SOBOL        in0.xyzw = bits of (pixel, sampleIndex, seed, group)          (sobol.h, sample_stream.h)
@@ -163,17 +163,17 @@ void main() {
         out1.zw = tri ? invertTriangleLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir)
                       : invertQuadLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
     } else if (r == R_RECT_LIGHT) {
-        LightSample s = sampleRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w));
+        LightSample s = sampleRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w), in2.w);
         out0 = vec4(s.dir, s.dist);
         out1.x = s.pdf;
-        out1.y = pdfRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
-        out1.z = useSphericalRect(in1.xyz, in2.xyz, sphericalRectInit(in0.xyz, in1.xyz, in2.xyz, in3.xyz)) ? 1.0 : 0.0;
+        out1.y = pdfRectLight(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir, in2.w);
+        out1.z = rectLightUsesSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, in2.w) ? 1.0 : 0.0;
     } else if (r == R_SPH_TRI_LIGHT) {
-        LightSample s = sampleTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w));
+        LightSample s = sampleTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, vec2(in0.w, in1.w), in2.w);
         out0 = vec4(s.dir, s.dist);
         out1.x = s.pdf;
-        out1.y = pdfTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir);
-        out1.z = useSphericalTriangle(triangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz)) ? 1.0 : 0.0;
+        out1.y = pdfTriangleLightSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, s.dir, in2.w);
+        out1.z = triangleLightUsesSolidAngle(in0.xyz, in1.xyz, in2.xyz, in3.xyz, in2.w) ? 1.0 : 0.0;
     } else if (r == R_SPHERE_LIGHT) {
         LightSample s = sampleSphereLight(in0.xyz, in0.w, in3.xyz, in1.xy);
         out0 = vec4(s.dir, s.dist);

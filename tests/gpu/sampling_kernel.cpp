@@ -129,20 +129,20 @@ Out hostSamplingKernel(Routine r, const Item& it) {
     }
     case kSphTriLight: {
         const vec3 a = xyz(in0), b = xyz(in1), e = xyz(in2), p = xyz(in3);
-        gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(a, b, e, p, vec2(in0.w, in1.w));
+        gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(a, b, e, p, vec2(in0.w, in1.w), in2.w);
         out0 = vec4(s.dir, s.dist);
         out1.x = s.pdf;
-        out1.y = gpu::pdfTriangleLightSolidAngle(a, b, e, p, s.dir);
-        out1.z = gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(a, b, e, p)) ? 1.0f : 0.0f;
+        out1.y = gpu::pdfTriangleLightSolidAngle(a, b, e, p, s.dir, in2.w);
+        out1.z = gpu::triangleLightUsesSolidAngle(a, b, e, p, in2.w) ? 1.0f : 0.0f;
         break;
     }
     case kRectLight: {
         const vec3 a = xyz(in0), b = xyz(in1), e = xyz(in2), p = xyz(in3);
-        gpu::LightSample s = gpu::sampleRectLight(a, b, e, p, vec2(in0.w, in1.w));
+        gpu::LightSample s = gpu::sampleRectLight(a, b, e, p, vec2(in0.w, in1.w), in2.w);
         out0 = vec4(s.dir, s.dist);
         out1.x = s.pdf;
-        out1.y = gpu::pdfRectLight(a, b, e, p, s.dir);
-        out1.z = gpu::useSphericalRect(b, e, gpu::sphericalRectInit(a, b, e, p)) ? 1.0f : 0.0f;
+        out1.y = gpu::pdfRectLight(a, b, e, p, s.dir, in2.w);
+        out1.z = gpu::rectLightUsesSolidAngle(a, b, e, p, in2.w) ? 1.0f : 0.0f;
         break;
     }
     case kSphereLight: {

@@ -11,6 +11,7 @@
 #include "core/image_io.h"
 #include "gpu_env.h"
 #include "render/error_metrics.h"
+#include "render/features.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -179,7 +180,8 @@ TEST_F(CliBench, StatsJsonKeysAndConsistency) {
     EXPECT_EQ(j["environment"]["LP_NUM_THREADS"], "2");
     EXPECT_TRUE(j["error"]["relmse"].is_number());
     EXPECT_EQ(j["light_pick"], "power");
-    EXPECT_EQ(j["light_sampling"], "solid-angle");
+    EXPECT_EQ(j["light_sampling"], "auto");
+    EXPECT_NEAR(j["solid_angle_min_size"].get<double>(), double(kSolidAngleMinSize), 1e-7);
     // cornell-classic: 18 primitives of 48 bytes at least; a process with a Vulkan device uses megabytes.
     EXPECT_GE(j["scene_buffer_bytes"].get<double>(), 18 * 48);
     EXPECT_GT(j["peak_rss_bytes"].get<double>(), 1e6);

@@ -145,6 +145,39 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     EXPECT_THROW(Renderer(dev, scene, bvh, big), VulkanError);
 }
 
+// `--light-sampling auto` is a per-point choice between the other two: with its switch at 0 sr
+// every point qualifies and the image is bit for bit `solid-angle`'s; with the switch beyond any
+// size in the box it is `area`'s. Between them (the default) it differs from both, since near the
+// ceiling light it samples in solid angle and elsewhere in area. (cornell-classic: its light is a
+// rectangle; the glass and metal of book3 are not needed here.)
+TEST(GpuRender, AutoLightSamplingIsSolidAngleOrAreaPerPoint) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-classic.json");
+    scene.camera.width = 24;
+    scene.camera.height = 24;
+    const FlatBvh bvh = buildFlatBvh(scene);
+    auto render = [&](LightSampling ls, float minSize) {
+        RendererOptions o;
+        o.sampler = Sampler::Mis;
+        o.samplesPerDispatch = 4;
+        o.lightSampling = ls;
+        o.solidAngleMinSize = minSize;
+        Renderer r(dev, scene, bvh, o);
+        r.addSamples(16);
+        return r.readSums();
+    };
+    auto same = [](const PixelSums& a, const PixelSums& b) {
+        return a.sum.size() == b.sum.size() && std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0;
+    };
+    const PixelSums solid = render(LightSampling::SolidAngle, 0.0f), area = render(LightSampling::Area, 0.0f);
+    EXPECT_FALSE(same(solid, area));
+    EXPECT_TRUE(same(render(LightSampling::Auto, 0.0f), solid));
+    EXPECT_TRUE(same(render(LightSampling::Auto, 1e9f), area));
+    const PixelSums mid = render(LightSampling::Auto, kSolidAngleMinSize);
+    EXPECT_FALSE(same(mid, solid));
+    EXPECT_FALSE(same(mid, area));
+}
+
 /// Mean and variance-of-mean of square blocks of pixels, per channel.
 struct Blocks {
     std::vector<double> mean, var;

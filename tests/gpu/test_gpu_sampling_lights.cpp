@@ -125,16 +125,34 @@ TEST(GpuSampling, TriangleLightMatchesHost) {
 /// Directions within 2e-3, pdfs within 1e-4 relative: the warps go through acos/asin, atan, sin and
 /// cos (each ~1 ulp apart between the builds) and divisions that amplify them for a point almost
 /// in the light's plane (worst seen: 2e-4 and 2e-5 for rectangles).
+///
+/// A third of the items pass minSize 0 (solid angle wherever it is precise), a third half the
+/// light's apparent size (the same) and a third twice it (area sampling by the size switch of
+/// `--light-sampling auto`): the switch must take the same branch in both builds.
 void checkSolidAngleLight(VulkanDevice& dev, Routine r, const char* name, std::uint32_t seed,
                           const std::function<bool(const Item&)>& ambiguous) {
+    const bool tri = r == kSphTriLight;
     std::vector<Item> items;
-    for (const PlanarCase& pc : planarCases())
-        for (vec2 xi : uPairs(seed++, kRandomItems / 13))
-            items.push_back(item(vec4(pc.q, xi.x), vec4(pc.e1, xi.y), vec4(pc.e2, 0.0f), vec4(pc.p, 0.0f)));
-    int solidAngle = 0;
+    for (const PlanarCase& pc : planarCases()) {
+        const float area = tri ? 0.5f * glm::length(glm::cross(pc.e1, pc.e2)) : glm::length(glm::cross(pc.e1, pc.e2));
+        const vec3 centre = tri ? pc.q + (pc.e1 + pc.e2) * (1.0f / 3.0f) : pc.q + 0.5f * (pc.e1 + pc.e2);
+        const float size = gpu::apparentSize(area, centre, pc.p);
+        int k = 0;
+        for (vec2 xi : uPairs(seed++, kRandomItems / 13)) {
+            const float minSize = (k % 3 == 0) ? 0.0f : (k % 3 == 1) ? 0.5f * size : 2.0f * size;
+            ++k;
+            items.push_back(item(vec4(pc.q, xi.x), vec4(pc.e1, xi.y), vec4(pc.e2, minSize), vec4(pc.p, 0.0f)));
+        }
+    }
+    int solidAngle = 0, switchedToArea = 0, compared = 0;
     checkRoutine(dev, r, name, items, [&](Compare& c, const Item& it, const Out& d, const Out& h) {
         if (d.o[1].z != h.o[1].z) return ambiguous(it) ? c.flip() : c.fail("strategy differs");
+        ++compared;
         solidAngle += d.o[1].z != 0.0f;
+        const bool large = tri ? gpu::triangleLargeEnough(xyz(it.in[0]), xyz(it.in[1]), xyz(it.in[2]), xyz(it.in[3]), it.in[2].w)
+                               : gpu::rectLargeEnough(xyz(it.in[0]), xyz(it.in[1]), xyz(it.in[2]), xyz(it.in[3]), it.in[2].w);
+        switchedToArea += !large;
+        if (!large && d.o[1].z != 0.0f) return c.fail("solid angle below minSize");
         if ((d.o[1].x > 0.0f) != (h.o[1].x > 0.0f)) {
             if (std::min(edgeDistance(it.in[0].w), edgeDistance(it.in[1].w)) < 1e-4) return c.flip();
             return c.fail("valid in one build only");
@@ -144,7 +162,10 @@ void checkSolidAngleLight(VulkanDevice& dev, Routine r, const char* name, std::u
         c.near("pdf", d.o[1].x, h.o[1].x, 0.0, 1e-4);
         if (d.o[1].y > 0.0f && h.o[1].y > 0.0f) c.near("pdfAlone", d.o[1].y, h.o[1].y, 0.0, 1e-4);
     });
-    EXPECT_GT(solidAngle, int(items.size()) / 8);  // the solid-angle strategy is really exercised
+    // Both strategies and the size switch are really exercised: of the items whose minSize allows
+    // solid-angle sampling (two thirds) at least a sixth use it; a third are switched to area.
+    EXPECT_GT(solidAngle, (compared - switchedToArea) / 6);
+    EXPECT_GT(switchedToArea, compared / 4);
 }
 
 // Triangles sampled uniformly in solid angle (triangle_sampling.h, Arvo 1995). The strategies may

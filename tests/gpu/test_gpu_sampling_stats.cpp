@@ -124,7 +124,7 @@ TEST(GpuSamplingStats, SphericalTriangleLight) {
         return item(vec4(pc.q, xi.x), vec4(pc.e1, xi.y), vec4(pc.e2, 0.0f), vec4(pc.p, 0.0f));
     });
     expectFits(dirs, planarCap(pc, true),
-               [&](const dvec3& d) { return double(gpu::pdfTriangleLightSolidAngle(pc.q, pc.e1, pc.e2, pc.p, vec3(d))); });
+               [&](const dvec3& d) { return double(gpu::pdfTriangleLightSolidAngle(pc.q, pc.e1, pc.e2, pc.p, vec3(d), 0.0f)); });
 }
 
 void expectSphereFits(VulkanDevice& dev, const SphereCase& s, std::uint32_t expectedStrategy, std::uint32_t seed) {

@@ -194,13 +194,16 @@ TEST(LightStats, QuadSkewedFromBehind) {
 
 // ---- Rectangles, uniform in solid angle (Urena et al. 2013; area sampling as fallback) --------
 
-LightCase rectCase(const std::string& name, vec3 Q, vec3 u, vec3 v, vec3 p, bool expectSolidAngle) {
+/// minSize: the apparent size (sr) below which the light is sampled in area (--light-sampling auto).
+LightCase rectCase(const std::string& name, vec3 Q, vec3 u, vec3 v, vec3 p, bool expectSolidAngle, float minSize = 0.0f) {
     LightCase c;
     c.name = name;
-    c.sample = [=](vec2 xi) { return gpu::sampleRectLight(Q, u, v, p, xi); };
-    c.pdf = [=](vec3 d) { return gpu::pdfRectLight(Q, u, v, p, d); };
+    c.sample = [=](vec2 xi) { return gpu::sampleRectLight(Q, u, v, p, xi, minSize); };
+    c.pdf = [=](vec3 d) { return gpu::pdfRectLight(Q, u, v, p, d, minSize); };
     c.binning = planarBinning(p, Q, u, v, false);
-    EXPECT_EQ(gpu::useSphericalRect(u, v, gpu::sphericalRectInit(Q, u, v, p)), expectSolidAngle) << name;
+    EXPECT_EQ(gpu::rectLightUsesSolidAngle(Q, u, v, p, minSize), expectSolidAngle) << name;
+    if (minSize == 0.0f)
+        EXPECT_EQ(gpu::useSphericalRect(u, v, gpu::sphericalRectInit(Q, u, v, p)), expectSolidAngle) << name;
     return c;
 }
 
@@ -233,7 +236,7 @@ TEST(LightStats, RectSolidAngleIsExact) {
     EXPECT_NEAR(gpu::sphericalRectInit(Q, u, v, p).S, S, 1e-5 * S);
     UniformSource rng(216);
     for (int i = 0; i < 1000; ++i) {
-        gpu::LightSample s = gpu::sampleRectLight(Q, u, v, p, rng.next2());
+        gpu::LightSample s = gpu::sampleRectLight(Q, u, v, p, rng.next2(), 0.0f);
         EXPECT_NEAR(s.pdf, 1.0 / S, 1e-5 / S);
     }
 }
@@ -257,13 +260,17 @@ TEST(LightStats, TriangleGrazing) {
 
 // ---- Triangles, uniform in solid angle (Arvo 1995; area sampling as fallback) ------------------
 
-LightCase sphTriCase(const std::string& name, vec3 v0, vec3 e1, vec3 e2, vec3 p, bool expectSolidAngle) {
+/// minSize: the apparent size (sr) below which the light is sampled in area (--light-sampling auto).
+LightCase sphTriCase(const std::string& name, vec3 v0, vec3 e1, vec3 e2, vec3 p, bool expectSolidAngle,
+                     float minSize = 0.0f) {
     LightCase c;
     c.name = name;
-    c.sample = [=](vec2 xi) { return gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, xi); };
-    c.pdf = [=](vec3 d) { return gpu::pdfTriangleLightSolidAngle(v0, e1, e2, p, d); };
+    c.sample = [=](vec2 xi) { return gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, xi, minSize); };
+    c.pdf = [=](vec3 d) { return gpu::pdfTriangleLightSolidAngle(v0, e1, e2, p, d, minSize); };
     c.binning = planarBinning(p, v0, e1, e2, true);
-    EXPECT_EQ(gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(v0, e1, e2, p)), expectSolidAngle) << name;
+    EXPECT_EQ(gpu::triangleLightUsesSolidAngle(v0, e1, e2, p, minSize), expectSolidAngle) << name;
+    if (minSize == 0.0f)
+        EXPECT_EQ(gpu::useSphericalTriangle(gpu::triangleLightSolidAngle(v0, e1, e2, p)), expectSolidAngle) << name;
     return c;
 }
 
@@ -291,11 +298,48 @@ TEST(LightStats, SphericalTriangleSolidAngleIsExact) {
     EXPECT_NEAR(gpu::triangleLightSolidAngle(v0, e1, e2, p), kPi / 2, 1e-6);
     UniformSource rng(225);
     for (int i = 0; i < 10000; ++i) {
-        const gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, rng.next2());
+        const gpu::LightSample s = gpu::sampleTriangleLightSolidAngle(v0, e1, e2, p, rng.next2(), 0.0f);
         ASSERT_NEAR(s.pdf, 2.0 / kPi, 1e-6);
         ASSERT_GE(std::min(s.dir.x, std::min(s.dir.y, s.dir.z)), -1e-6f);
         ASSERT_NEAR(s.dir.x + s.dir.y + s.dir.z, 1.0f / s.dist, 1e-4f);  // the point lies on x + y + z = 1
     }
+}
+
+// ---- The size switch of `--light-sampling auto` ---------------------------------------------------
+// Solid-angle sampling only from points where the light looks at least minSize large (area over
+// squared distance to its centre); area sampling elsewhere. The same point on either side of the
+// switch: each branch passes chi-square and sample/pdf consistency on its own.
+
+TEST(LightStats, ApparentSizeIsAreaOverSquaredDistanceToTheCentre) {
+    // kQ + a kU + b kV: area |kU x kV|; from 2 above its centre it looks area / 4 large.
+    const vec3 c = kQ + 0.5f * (kU + kV), n = glm::normalize(glm::cross(kU, kV));
+    const float area = glm::length(glm::cross(kU, kV));
+    EXPECT_FLOAT_EQ(gpu::apparentSize(area, c, c + 2.0f * n), area / 4.0f);
+    EXPECT_TRUE(gpu::rectLargeEnough(kQ, kU, kV, c + 2.0f * n, 0.249f * area));
+    EXPECT_FALSE(gpu::rectLargeEnough(kQ, kU, kV, c + 2.0f * n, 0.251f * area));
+    EXPECT_TRUE(gpu::rectLargeEnough(kQ, kU, kV, c + 2.0f * n, 0.0f));
+    EXPECT_TRUE(gpu::rectLargeEnough(kQ, kU, kV, c, 1e30f));  // at the centre: as large as it gets
+    // Triangle: half the parallelogram's area, centred at its centroid.
+    const vec3 g = kV0 + (kE1 + kE2) / 3.0f, m = glm::normalize(glm::cross(kE1, kE2));
+    const float triArea = 0.5f * glm::length(glm::cross(kE1, kE2));
+    EXPECT_TRUE(gpu::triangleLargeEnough(kV0, kE1, kE2, g + 3.0f * m, 0.999f * triArea / 9.0f));
+    EXPECT_FALSE(gpu::triangleLargeEnough(kV0, kE1, kE2, g + 3.0f * m, 1.001f * triArea / 9.0f));
+}
+
+TEST(LightStats, RectBelowMinSizeSamplesArea) {
+    // From "rect near" the light looks 14.3 sr large (area 2 at distance^2 0.14): minSize 20
+    // switches it to area sampling.
+    checkLight(rectCase("rect near, switched to area", kQ, kU, kV, vec3(0.2f, 0.1f, 1.7f), false, 20.0f), 217);
+}
+TEST(LightStats, RectAboveMinSizeSamplesSolidAngle) {
+    checkLight(rectCase("rect near, above the switch", kQ, kU, kV, vec3(0.2f, 0.1f, 1.7f), true, 10.0f), 218);
+}
+TEST(LightStats, SphericalTriangleBelowMinSizeSamplesArea) {
+    // From "spherical triangle near" the triangle looks 2.97 sr large (area 0.612, distance^2 0.206).
+    checkLight(sphTriCase("spherical triangle near, switched to area", kV0, kE1, kE2, vec3(0.3f, 0.4f, 0.5f), false, 10.0f), 227);
+}
+TEST(LightStats, SphericalTriangleAboveMinSizeSamplesSolidAngle) {
+    checkLight(sphTriCase("spherical triangle near, above the switch", kV0, kE1, kE2, vec3(0.3f, 0.4f, 0.5f), true, 2.0f), 228);
 }
 
 // Which triangle sampler the numbers favour (issue 5: "area or spherical triangle sampling
@@ -328,7 +372,7 @@ TEST(LightStats, SphericalTriangleVarianceIsLowerNearTheLight) {
             for (int i = 0; i < N; ++i) {
                 const vec2 xi = rng.next2();
                 const gpu::LightSample ls = k == 0 ? gpu::sampleTriangleLight(g.v0, g.e1, g.e2, vec3(0.0f), xi)
-                                                   : gpu::sampleTriangleLightSolidAngle(g.v0, g.e1, g.e2, vec3(0.0f), xi);
+                                                   : gpu::sampleTriangleLightSolidAngle(g.v0, g.e1, g.e2, vec3(0.0f), xi, 0.0f);
                 const double f = (ls.pdf > 0.0f) ? std::max(0.0, double(glm::dot(ls.dir, n))) / ls.pdf : 0.0;
                 m[k] += f;
                 q[k] += f * f;

@@ -67,15 +67,24 @@ TEST(CliArgs, Sequence) {
 TEST(CliArgs, LightPickAndSampling) {
     const CliArgs d = parseArgs({"render", "s.json"});
     EXPECT_EQ(d.lightPick, LightPick::Power);
-    EXPECT_EQ(d.lightSampling, LightSampling::SolidAngle);
+    EXPECT_EQ(d.lightSampling, LightSampling::Auto);
+    EXPECT_EQ(d.solidAngleMinSize, kSolidAngleMinSize);
     EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "uniform"}).lightPick, LightPick::Uniform);
     EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "power"}).lightPick, LightPick::Power);
     EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "area"}).lightSampling, LightSampling::Area);
     EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "solid-angle"}).lightSampling, LightSampling::SolidAngle);
     EXPECT_NE(errorOf({"render", "s.json", "--light-pick", "random"}).find("--light-pick must be power or uniform, got 'random'"),
               std::string::npos);
-    EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "cone"}).find("--light-sampling must be solid-angle or area"),
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto"}).lightSampling, LightSampling::Auto);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--solid-angle-min", "0.05"}).solidAngleMinSize, 0.05f);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto", "--solid-angle-min", "0"}).solidAngleMinSize, 0.0f);
+    EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "cone"}).find("--light-sampling must be auto, solid-angle or area"),
               std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "area", "--solid-angle-min", "0.1"})
+                  .find("--solid-angle-min applies to --light-sampling auto only"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--solid-angle-min", "-1"}).find("--solid-angle-min"), std::string::npos);
+    EXPECT_NE(errorOf({"info", "s.json", "--solid-angle-min", "0.1"}).find("only valid with 'vkpath render'"), std::string::npos);
 }
 
 TEST(CliArgs, WorkgroupAndTileOrder) {
