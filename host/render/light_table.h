@@ -16,6 +16,7 @@ namespace vkp {
 /// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722). A triangle under an emissive texture
 /// uses the texture's mean over its own UV footprint (EmissionEstimator, emitter_power.h): an
 /// estimate that only steers the pick probabilities (variance), never the mean of the image.
+/// Packs the scene's textures on every call: for many shapes use lightPowers.
 double lightPower(const Scene& scene, std::uint32_t shape);
 
 /// lightPower of every entry of scene.lights, in order (the textures packed once for all).
