@@ -134,8 +134,8 @@ TEST(EmitterPower, BlackButWithinReachOfBrightTexelsIsNeverZero) {
 
 // Wrap modes and KHR_texture_transform: a 16 x 16 texture white in columns 0-3 (u < 0.25), black
 // elsewhere, nearest. Each triangle (corners (0,0), (0.2,0), (0,0.2) in UV, moved by a UV shift in
-// the file) has a constant value over its transformed footprint (1 or 0, far from the edges), and
-// so does the lookup with the transform or wrap mode left out: the opposite value.
+// the file) has a constant value over its transformed footprint (1 or 0, far from the edges); in
+// 8 of the 11 cases the lookup with the transform or wrap mode left out has the opposite value.
 TEST(EmitterPower, WrapModesAndTextureTransformMoveTheFootprint) {
     struct Case {
         const char* what;
