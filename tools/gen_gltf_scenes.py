@@ -26,6 +26,10 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                an opaque quad behind a fully cut-out one
   emissive-texture.gltf        an emissiveTexture (tests/gpu/test_gpu_emissive_texture.cpp): a lamp
                                quad seen straight on, and a panel of the same material over a floor
+  emissive-spot.gltf           per-triangle power of a textured emitter (tests/gpu/
+                               test_gpu_emissive_texture.cpp): a panel of 128 triangles under a
+                               32x32 texture that is dark (sRGB 1/255) but for a bright 4x4 square,
+                               over a floor
   instances.gltf               instancing (tests/gpu/test_gpu_instancing.cpp, test_gltf_loader.cpp):
                                a lumpy blob with NORMALs used by 5 nodes (translated, rotated, a
                                non-uniform scale, a mirror, a mirror inside a rotated parent), a
@@ -473,6 +477,49 @@ def emissive_texture(out):
     g.doc["scenes"] = [{"nodes": [0, 1, 2]}]
     g.write_gltf(out / "emissive-texture.gltf")
 
+def emissive_spot(out):
+    """A panel of 8 x 8 cells (128 triangles, 2 per cell) at y = 2 over x, z in [-1, 1], facing down,
+    UV = ((x + 1) / 2, (z + 1) / 2), emissiveFactor 1 x strength 8 x a 32 x 32 sRGB texture (bilinear,
+    clamp) that is (1, 1, 1) / 255 everywhere (linear 3.0e-4) but for texels x 8-11, y 20-23, which
+    are (255, 230, 200): one cell's worth of the texture (cell 2, 5) holds ~98 % of the light. Every
+    triangle has the same area and some emission (none is black), so the light pick before issue 6
+    (the texture's mean for every triangle) picked them all alike: --light-pick uniform. A grey
+    Lambertian floor (y = 0, x, z in [-2, 2], specularFactor 0) faces up."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_emissive_strength"]
+    tex = [[(255, 230, 200, 255) if 8 <= x < 12 and 20 <= y < 24 else (1, 1, 1, 255) for x in range(32)] for y in range(32)]
+    g.doc["images"] = [{"uri": data_png(32, 32, tex)}]
+    g.doc["samplers"] = [{"magFilter": 9729, "wrapS": 33071, "wrapT": 33071}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    g.doc["materials"] = [
+        {"name": "spot", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}},
+         "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
+        {"name": "floor", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {"specularFactor": 0}}},
+    ]
+    n = 8
+    pos, uv, idx = [], [], []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, z = -1 + 2 * i / n, -1 + 2 * j / n
+            pos.append((x, 2.0, z))
+            uv += [i / n, j / n]
+    for j in range(n):
+        for i in range(n):
+            a, b, c, d = (j + 1) * (n + 1) + i, (j + 1) * (n + 1) + i + 1, j * (n + 1) + i + 1, j * (n + 1) + i
+            idx += [a, c, b, a, d, c]  # counter-clockwise seen from below: faces -y
+    spot = {"POSITION": g.positions(pos), "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+    g.add("meshes", {"name": "spot", "primitives": [{"attributes": spot, "material": 0,
+                                                      "indices": g.accessor(idx, UBYTE, "SCALAR")}]})
+    floor = {"POSITION": g.positions([(-2, 0, -2), (2, 0, -2), (2, 0, 2), (-2, 0, 2)])}
+    g.add("meshes", {"name": "floor", "primitives": [{"attributes": floor, "material": 1,
+                                                       "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": "spot", "mesh": 0}, {"name": "floor", "mesh": 1}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1]}]
+    g.write_gltf(out / "emissive-spot.gltf")
+
 
 def blob(rings=10, segments=16):
     """A unit-radius-0.5 sphere with a lump towards +x (so a mirror shows): vertices and per-vertex
@@ -669,7 +716,7 @@ def main():
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
     for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture,
-                  instances):
+                  emissive_spot, instances):
         write(out)
 
 

@@ -107,8 +107,7 @@ double envPickProbability(const Scene& scene, LightPick pick) {
     if (!hasEnvironmentLight(scene)) return 0.0;
     if (pick == LightPick::Uniform) return 1.0 / (1.0 + double(emittingLightCount(scene)));
     double emitters = 0.0;
-    const std::vector<glm::dvec3> scales = emissionScales(scene);
-    for (std::uint32_t shape : scene.lights) emitters += lightPower(scene, shape, &scales);
+    for (double w : lightPowers(scene)) emitters += w;
     if (!(emitters > 0.0)) return 1.0;
     const double r = sceneRadius(scene);
     const double env = 4.0 * kPi * r * r * envMeanLuminance(scene);

@@ -2,43 +2,28 @@
 
 #include <bit>
 
-#include "shared/texture_sample.h"
+#include "render/emitter_power.h"
 
 namespace vkp {
 
 namespace {
-glm::dvec3 emissionScale(const Scene& scene, const Material& original) {
-    if (original.type != MaterialType::Pbr || !original.emits() || !original.pbr.emissiveTexture.valid()) return glm::dvec3(1.0);
-    const Texture& t = scene.textures.at(std::size_t(original.pbr.emissiveTexture.texture));
-    const TextureImage& img = scene.images.at(t.image);
-    glm::dvec3 sum(0.0);
-    const std::size_t n = std::size_t(img.width) * img.height;
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint8_t* p = &img.rgba8[4 * i];
-        const glm::vec4 c = gpu::texDecode(std::uint32_t(p[0]) | (std::uint32_t(p[1]) << 8u) |
-                                               (std::uint32_t(p[2]) << 16u) | (std::uint32_t(p[3]) << 24u),
-                                           t.srgb);
-        sum += glm::dvec3(c.x, c.y, c.z);
-    }
-    return n > 0 ? sum / double(n) : glm::dvec3(0.0);
-}
-}  // namespace
-
-std::vector<glm::dvec3> emissionScales(const Scene& scene) {
-    std::vector<glm::dvec3> out;
-    out.reserve(scene.materials.size());
-    for (const Material& m : scene.materials) out.push_back(emissionScale(scene, m));
-    return out;
-}
-
-double lightPower(const Scene& scene, std::uint32_t shape, const std::vector<glm::dvec3>* scales) {
+double powerOf(const Scene& scene, const EmissionEstimator& est, std::uint32_t shape) {
     const Shape& s = scene.shapes.at(shape);
     const Material m = kernelMaterial(scene.materials.at(s.material));
     if (!m.emits()) return 0.0;
-    const glm::dvec3 k = scales ? scales->at(s.material) : emissionScale(scene, scene.materials.at(s.material));
-    const double lum = 0.2126 * m.emit.x * k.x + 0.7152 * m.emit.y * k.y + 0.0722 * m.emit.z * k.z;
     const double faces = (m.twoSided || m.type == MaterialType::Lambertian) ? 2.0 : 1.0;
-    return lum * double(shapeArea(s)) * faces;
+    return est.meanLuminance(shape) * double(shapeArea(s)) * faces;
+}
+}  // namespace
+
+double lightPower(const Scene& scene, std::uint32_t shape) { return powerOf(scene, EmissionEstimator(scene), shape); }
+
+std::vector<double> lightPowers(const Scene& scene) {
+    const EmissionEstimator est(scene);
+    std::vector<double> out;
+    out.reserve(scene.lights.size());
+    for (std::uint32_t shape : scene.lights) out.push_back(powerOf(scene, est, shape));
+    return out;
 }
 
 AliasTable buildAliasTable(const std::vector<double>& weights) {
@@ -78,12 +63,9 @@ AliasTable buildAliasTable(const std::vector<double>& weights) {
 }
 
 std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape, LightPick pick) {
-    std::vector<double> power;
-    const std::vector<glm::dvec3> scales = emissionScales(scene);
-    for (std::uint32_t shape : scene.lights) {
-        const double w = lightPower(scene, shape, &scales);
-        power.push_back(pick == LightPick::Uniform ? (w > 0.0 ? 1.0 : 0.0) : w);
-    }
+    std::vector<double> power = lightPowers(scene);
+    if (pick == LightPick::Uniform)
+        for (double& w : power) w = w > 0.0 ? 1.0 : 0.0;
     const AliasTable table = buildAliasTable(power);
     std::vector<gpu::GpuLight> out;
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {

@@ -11,16 +11,16 @@
 namespace vkp {
 
 /// Emitted power of a sampled shape, up to the factor pi shared by all diffuse emitters:
-/// luminance(emit) * area * (number of emitting faces: 2 for an emitting lambertian or a
-/// two-sided diffuse_light, else 1). 0 for an object that does not emit.
-/// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722). An emissive texture scales emit by
-/// its image's mean (emissionScales; computed for this shape alone when scales is null).
-double lightPower(const Scene& scene, std::uint32_t shape, const std::vector<glm::dvec3>* scales = nullptr);
+/// (mean luminance of its emitted radiance) * area * (number of emitting faces: 2 for an emitting
+/// lambertian or a two-sided diffuse_light, else 1). 0 for an object that does not emit.
+/// Luminance weights: Rec. 709 (0.2126, 0.7152, 0.0722). A triangle under an emissive texture
+/// uses the texture's mean over its own UV footprint (EmissionEstimator, emitter_power.h): an
+/// estimate that only steers the pick probabilities (variance), never the mean of the image.
+/// Packs the scene's textures on every call: for many shapes use lightPowers.
+double lightPower(const Scene& scene, std::uint32_t shape);
 
-/// Per material, the mean linear RGB of its emissive texture over the whole image (sRGB decoded;
-/// wrap and KHR_texture_transform ignored), (1, 1, 1) without one: the light pick's estimate of a
-/// textured emitter's power. Only the pick probabilities (variance) depend on it, never the mean.
-std::vector<glm::dvec3> emissionScales(const Scene& scene);
+/// lightPower of every entry of scene.lights, in order (the textures packed once for all).
+std::vector<double> lightPowers(const Scene& scene);
 
 /// Alias table for the discrete distribution `weights` (non-negative, any scale; all zero gives
 /// an empty table). threshold[i] in [0,1], alias[i] < n; the probability of i is
@@ -34,7 +34,8 @@ AliasTable buildAliasTable(const std::vector<double>& weights);
 
 /// One GpuLight per entry of scene.lights, in order; primOfShape maps a shape to its primitive.
 /// Emitters are picked in proportion to their power (lightPower), or each with the same
-/// probability for LightPick::Uniform; objects that do not emit get probability 0 either way.
+/// probability for LightPick::Uniform; objects of power 0 (no emission, or a triangle whose
+/// emissive texture is black wherever the kernel can read it) get probability 0 either way.
 std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape,
                                       LightPick pick = LightPick::Power);
 

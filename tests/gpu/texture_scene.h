@@ -13,13 +13,13 @@
 #include "render/texture_pack.h"
 #include "test_gpu_analytic_common.h"
 
+#include "render/texture_sample_host.h"
+
 namespace vkp::test {
-/// The texel buffer the C++ texSample reads (set before sampling).
-inline const std::vector<std::uint32_t>* gTexels = nullptr;
-inline std::uint32_t hostTexelFetch(std::uint32_t i) { return gTexels->at(i); }
+/// The texel buffer the C++ texSample reads (set before sampling): the host build's (one
+/// definition of texSample per program, render/texture_sample_host.h).
+inline const std::vector<std::uint32_t>*& gTexels = ::vkp::gHostTexels;
 }  // namespace vkp::test
-#define VKP_TEXEL_FETCH(i) ::vkp::test::hostTexelFetch(i)
-#include "shared/texture_sample.h"
 
 namespace vkp::test {
 

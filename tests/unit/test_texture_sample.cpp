@@ -9,12 +9,12 @@
 
 #include "scene/scene.h"
 
+#include "render/texture_sample_host.h"
+
 namespace {
 std::vector<std::uint32_t> gTexels;  // the "texel buffer" texSample reads in these tests
-std::uint32_t testFetch(std::uint32_t i) { return gTexels.at(i); }
+[[maybe_unused]] const bool kBound = (vkp::gHostTexels = &gTexels, true);  // the host build reads it (texture_sample_host.h)
 }  // namespace
-#define VKP_TEXEL_FETCH(i) testFetch(i)
-#include "shared/texture_sample.h"
 
 namespace vkp::gpu {
 namespace {
