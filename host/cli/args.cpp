@@ -56,8 +56,9 @@ render options:
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
   --gltf-scene N          .gltf/.glb: render scene N of the file (default: the file's default scene)
   --camera N              .gltf/.glb: view through camera N of the file (default: its first perspective camera)
-  --instancing M          .gltf/.glb: auto (default: a mesh several nodes use is stored once, two-level BVH)
-                          | flatten (every node's triangles placed in the world); also for 'vkpath info'
+  --instancing M          glTF: auto (default: a mesh several nodes use, or of a file a JSON scene includes
+                          several times, is stored once, two-level BVH) | flatten (every node's triangles
+                          placed in the world); also for 'vkpath info'
   --exposure EV           exposure in stops for PNG output (default 0)
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png

@@ -44,7 +44,9 @@ Scene loadWithOverrides(const CliArgs& a) {
         o.instancing = a.instancing;
         s = loadSceneGltf(a.scene, o);
     } else {
-        s = loadSceneJson(a.scene);
+        SceneJsonOptions o;
+        o.instancing = a.instancing;  // included glTF files
+        s = loadSceneJson(a.scene, o);
     }
     for (const std::string& w : s.warnings) std::fprintf(stderr, "vkpath: warning: %s\n", w.c_str());
     if (a.spp) s.render.spp = *a.spp;

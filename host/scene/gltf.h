@@ -3,7 +3,11 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <optional>
+#include <string>
+#include <tuple>
 
 #include <glm/glm.hpp>
 
@@ -48,9 +52,35 @@ struct GltfInclude {
     std::optional<std::uint32_t> sceneIndex;  ///< default: the file's default scene
 };
 
-/// Append the triangles of a glTF file's scene to scene: shapes, lights (emissive triangles),
-/// materials and textures (unless include.material), vertex attributes and warnings. Cameras are
-/// ignored. Throws InputError like loadSceneGltf.
-void appendGltf(Scene& scene, const std::filesystem::path& file, const GltfInclude& include);
+/// The glTF files a JSON scene includes (objects {"type": "gltf", ...}). Each distinct (canonical
+/// file path, scene, material override) is read once and its materials and textures are appended
+/// to the scene once; every include places its scene again under its transform. With instancing,
+/// a mesh that the file draws at least twice in all (nodes using it x includes of the file) and
+/// that does not emit is stored once in object space (Scene::meshes), with one Scene::instances
+/// entry per node and include (include transform x node world matrix); every other mesh (and
+/// every mesh without instancing) is placed in the world per include, emissive triangles as lights.
+class GltfIncludes {
+public:
+    /// scene receives every include; it is kept by reference and must not move while this lives.
+    GltfIncludes(Scene& scene, bool instancing);
+    ~GltfIncludes();
+    GltfIncludes(const GltfIncludes&) = delete;
+    GltfIncludes& operator=(const GltfIncludes&) = delete;
+
+    /// Announce an include before the first append(), once per include that append() will get, so
+    /// that a file included n times is known to be drawn n times. Never throws for a bad file.
+    void expect(const std::filesystem::path& file, const GltfInclude& include);
+    /// Place one include (the file is read at its first include). Throws InputError like
+    /// loadSceneGltf: one line "<file>: <place>: <what is wrong>".
+    void append(const std::filesystem::path& file, const GltfInclude& include);
+
+private:
+    struct File;
+    using Key = std::tuple<std::string, std::int64_t, std::int64_t>;  ///< canonical path, scene, material (-1: none)
+    static Key key(const std::filesystem::path& file, const GltfInclude& include);
+    Scene& scene_;
+    bool instancing_;
+    std::map<Key, std::unique_ptr<File>> files_;
+};
 
 }  // namespace vkp

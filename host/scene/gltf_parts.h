@@ -4,7 +4,8 @@
 //   gltf_mesh.cpp       primitives -> world-space triangles, vertex attributes, lights
 //   gltf_material.cpp   materials, textures, samplers -> Scene (MaterialType::Pbr)
 //   gltf_camera.cpp     glTF camera or a framing camera -> Camera, image size
-//   gltf_scene.cpp      node hierarchy, loadSceneGltf, appendGltf
+//   gltf_scene.cpp      node hierarchy, placement of a scene's meshes (flattened or instanced), loadSceneGltf
+//   gltf_include.cpp    GltfIncludes: files included by a JSON scene, each read and stored once
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -139,5 +140,46 @@ Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, cons
 /// Width and height: both options; one of them and the aspect ratio (width / height, > 0); or
 /// kGltfDefaultImageSide on the long side.
 void imageSize(double aspect, const GltfOptions& options, Camera& camera);
+
+/// One node that draws a mesh, with its world matrix (root * hierarchy, column vectors).
+struct MeshInstance {
+    std::size_t node = 0;
+    std::size_t mesh = 0;
+    glm::dmat4 world{1.0};
+};
+/// One node that carries a camera, with its world matrix.
+struct CameraInstance {
+    std::size_t node = 0;
+    std::size_t camera = 0;
+    glm::dmat4 world{1.0};
+};
+struct Instances {
+    std::vector<MeshInstance> meshes;     ///< in depth-first order of the hierarchy
+    std::vector<CameraInstance> cameras;  ///< in depth-first order of the hierarchy
+};
+
+/// Every mesh and camera instance of the chosen scene (sceneIndex; default: the file's "scene",
+/// else 0), with world matrices root * hierarchy. Warnings (skins) go to out.warnings.
+Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex, const glm::dmat4& root, Scene& out);
+
+/// What one file's placements share: its materials (mapped once into the scene), which meshes are
+/// stored once (decided at the first placement) and where (Scene::meshes index, -1: not yet).
+struct PlacementState {
+    MaterialMapper materials;
+    bool decided = false;
+    std::vector<std::vector<std::uint32_t>> meshMaterials;  ///< scene material per primitive, per shared mesh
+    std::vector<char> shared;                               ///< per glTF mesh: stored once, drawn by instances
+    std::vector<std::int64_t> meshSlot;                     ///< per glTF mesh: index into Scene::meshes
+};
+
+/// Append one placement (inst: the traversed nodes, already under the placement's root matrix) of
+/// a file to scene: the triangles of unshared meshes in world space, and, with instancing, the
+/// meshes drawn at least twice (nodes using it x includes, the file placed `includes` times) and
+/// not emitting stored once in object space (at their first use) plus one Scene::instances entry
+/// per node. The first call decides what is shared and gives the warnings about morph targets and
+/// animations. Refuses more than kGltfMaxTriangles / kGltfMaxVertices new triangles / vertices in
+/// one call (a mesh already stored counts 0). Returns the world bounds of what was placed.
+std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Instances& inst, PlacementState& state,
+                                                  bool instancing, std::uint32_t includes, Scene& scene);
 
 }  // namespace vkp::gltf

@@ -1,5 +1,5 @@
 // The node hierarchy of a glTF scene (glTF 2.0 sec. 3.5): world matrices, mesh and camera
-// instances; loadSceneGltf and appendGltf.
+// instances; loadSceneGltf, and the placement shared with JSON includes (gltf_include.cpp).
 #include <cmath>
 #include <limits>
 
@@ -9,21 +9,6 @@
 namespace vkp::gltf {
 
 namespace {
-
-struct MeshInstance {
-    std::size_t node = 0;
-    std::size_t mesh = 0;
-    glm::dmat4 world{1.0};
-};
-struct CameraInstance {
-    std::size_t node = 0;
-    std::size_t camera = 0;
-    glm::dmat4 world{1.0};
-};
-struct Instances {
-    std::vector<MeshInstance> meshes;
-    std::vector<CameraInstance> cameras;  ///< in depth-first order of the hierarchy
-};
 
 std::vector<double> checked(const std::vector<double>& v, std::size_t n, const Document& doc, const std::string& place) {
     if (v.empty()) return v;
@@ -71,7 +56,8 @@ glm::dmat4 localMatrix(const Document& doc, std::size_t n) {
     return out;
 }
 
-/// Every mesh and camera instance of the chosen scene, with world matrices (root * hierarchy).
+}  // namespace
+
 Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex, const glm::dmat4& root, Scene& out) {
     const tinygltf::Model& model = doc.model;
     std::vector<int> roots;
@@ -139,15 +125,18 @@ Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex,
     return found;
 }
 
+namespace {
+
 /// Determinant of the linear part of a node's world matrix: 0 or not finite = hidden (scaled to
 /// nothing), negative = mirrored.
 double linearDeterminant(const glm::dmat4& world) { return glm::determinant(glm::dmat3(world)); }
 
-/// Which meshes are stored once for instancing: used by at least two drawn nodes, every primitive's
-/// material non-emissive (lights are sampled in world space). materials: the scene index of each
-/// primitive's material, per mesh.
+/// Which meshes are stored once for instancing: drawn at least twice (nodes x includes), every
+/// primitive's material non-emissive (lights are sampled in world space). materials: the scene
+/// index of each primitive's material, per mesh; includes: how often the file is placed.
 std::vector<char> sharedMeshes(const tinygltf::Model& model, const Instances& inst,
-                               const std::vector<std::vector<std::uint32_t>>& materials, const Scene& scene) {
+                               const std::vector<std::vector<std::uint32_t>>& materials, const Scene& scene,
+                               std::uint32_t includes) {
     std::vector<std::uint32_t> uses(model.meshes.size(), 0);
     for (const MeshInstance& mi : inst.meshes) {
         const double det = linearDeterminant(mi.world);
@@ -155,7 +144,7 @@ std::vector<char> sharedMeshes(const tinygltf::Model& model, const Instances& in
     }
     std::vector<char> shared(model.meshes.size(), 0);
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
-        if (uses[m] < 2) continue;
+        if (std::uint64_t(uses[m]) * includes < 2) continue;
         bool emits = false;
         for (std::uint32_t mat : materials[m]) emits = emits || scene.materials[mat].emits();
         shared[m] = !emits;
@@ -173,33 +162,39 @@ void growTransformedBox(const glm::dmat4& world, glm::dvec3 blo, glm::dvec3 bhi,
     }
 }
 
-/// Append the instances' triangles to scene (world space), or with `instancing` the meshes that
-/// several nodes share once in object space plus one MeshInstance per node; returns the world bounds
-/// of what was appended.
-std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Instances& inst,
-                                                  std::optional<std::uint32_t> materialOverride, bool instancing,
-                                                  Scene& scene) {
+}  // namespace
+
+std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Instances& inst, PlacementState& state,
+                                                  bool instancing, std::uint32_t includes, Scene& scene) {
     const tinygltf::Model& model = doc.model;
-    MaterialMapper materials(doc, scene, materialOverride);
-    // Each primitive's scene material, per mesh (mapped once, in the order the flattening loader maps them).
-    std::vector<std::vector<std::uint32_t>> meshMaterials(model.meshes.size());
-    std::vector<char> mapped(model.meshes.size(), 0);
-    std::vector<char> shared(model.meshes.size(), 0);
-    if (instancing) {
-        for (const MeshInstance& mi : inst.meshes) {
-            if (mapped[mi.mesh]) continue;
-            mapped[mi.mesh] = 1;
-            for (const auto& prim : model.meshes[mi.mesh].primitives) meshMaterials[mi.mesh].push_back(materials.material(prim.material));
+    MaterialMapper& materials = state.materials;
+    const bool first = !state.decided;
+    if (first) {
+        // Each primitive's scene material, per mesh (mapped once, in the order the flattening loader maps them).
+        state.meshMaterials.assign(model.meshes.size(), {});
+        state.shared.assign(model.meshes.size(), 0);
+        state.meshSlot.assign(model.meshes.size(), -1);
+        if (instancing) {
+            std::vector<char> mapped(model.meshes.size(), 0);
+            for (const MeshInstance& mi : inst.meshes) {
+                if (mapped[mi.mesh]) continue;
+                mapped[mi.mesh] = 1;
+                for (const auto& prim : model.meshes[mi.mesh].primitives)
+                    state.meshMaterials[mi.mesh].push_back(materials.material(prim.material));
+            }
+            state.shared = sharedMeshes(model, inst, state.meshMaterials, scene, includes);
         }
-        shared = sharedMeshes(model, inst, meshMaterials, scene);
+        state.decided = true;
     }
+    const std::vector<char>& shared = state.shared;
+    std::vector<std::int64_t>& meshSlot = state.meshSlot;  // index into scene.meshes
     // Count first: refuse absurd totals before reading anything, and allocate once. A shared mesh
-    // counts once.
+    // counts once, when it is stored (not again for a later include of the same file).
     std::uint64_t triangles = 0, vertices = 0, uvVertices = 0, worldTriangles = 0;
     std::vector<char> counted(model.meshes.size(), 0);
     for (const MeshInstance& mi : inst.meshes) {
         const auto& mesh = model.meshes[mi.mesh];
-        if (shared[mi.mesh] && counted[mi.mesh]) continue;
+        if (shared[mi.mesh] && (counted[mi.mesh] || meshSlot[mi.mesh] >= 0)) continue;
         counted[mi.mesh] = 1;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const PrimitiveSize size = primitiveSize(doc, mi.mesh, p);
@@ -213,7 +208,7 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
                          (triangles > kGltfMaxTriangles ? " triangles" : " vertices") + " (vkpath's limit)");
             }
         }
-        if (!mesh.weights.empty()) {
+        if (first && !mesh.weights.empty()) {
             scene.warnings.push_back(line(doc.file, "mesh " + std::to_string(mi.mesh), "morph targets ignored: the base shape is drawn"));
         }
     }
@@ -224,7 +219,6 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
     if (uvVertices) scene.vertices.uv.reserve(scene.vertices.size() + vertices);
 
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    std::vector<std::int64_t> meshSlot(model.meshes.size(), -1);  // index into scene.meshes
     for (const MeshInstance& mi : inst.meshes) {
         const auto& mesh = model.meshes[mi.mesh];
         if (!shared[mi.mesh]) {
@@ -237,7 +231,7 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         if (meshSlot[mi.mesh] < 0) {  // first use: its triangles once, in object space
             const std::size_t before = scene.shapes.size();
             for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
-                appendPrimitive(doc, mi.mesh, p, glm::dmat4(1.0), meshMaterials[mi.mesh][p], scene);
+                appendPrimitive(doc, mi.mesh, p, glm::dmat4(1.0), state.meshMaterials[mi.mesh][p], scene);
             InstancedMesh im;
             im.name = "mesh " + std::to_string(mi.mesh) + (mesh.name.empty() ? "" : " (\"" + mesh.name + "\")");
             im.shapes.assign(scene.shapes.begin() + std::ptrdiff_t(before), scene.shapes.end());
@@ -265,7 +259,7 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         hi = glm::max(hi, whi);
         scene.instances.push_back({std::uint32_t(meshSlot[mi.mesh]), mi.world});
     }
-    if (!model.animations.empty()) {
+    if (first && !model.animations.empty()) {
         scene.warnings.push_back(line(doc.file, "animations", "ignored: the scene is drawn at rest"));
     }
     for (std::size_t i = firstShape; i < scene.shapes.size(); ++i) {
@@ -276,8 +270,6 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
     }
     return {lo, hi};
 }
-
-}  // namespace
 
 std::string nodePlace(const Document& doc, std::size_t node) {
     const std::string& name = doc.model.nodes.at(node).name;
@@ -294,7 +286,8 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
     scene.path = file;
     scene.warnings = std::move(doc.warnings);
     const gltf::Instances inst = gltf::traverse(doc, options.scene, glm::dmat4(1.0), scene);
-    const auto [lo, hi] = gltf::appendInstances(doc, inst, std::nullopt, options.instancing, scene);
+    gltf::PlacementState state{gltf::MaterialMapper(doc, scene, std::nullopt)};
+    const auto [lo, hi] = gltf::appendInstances(doc, inst, state, options.instancing, 1, scene);
 
     const gltf::CameraInstance* chosen = nullptr;
     if (options.camera) {
@@ -322,13 +315,6 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
     scene.camera = chosen ? gltf::cameraFromGltf(doc, chosen->camera, chosen->world, options)
                           : gltf::framingCamera(doc.file, lo, hi, options);
     return scene;
-}
-
-void appendGltf(Scene& scene, const std::filesystem::path& file, const GltfInclude& include) {
-    gltf::Document doc = gltf::readDocument(file);
-    scene.warnings.insert(scene.warnings.end(), doc.warnings.begin(), doc.warnings.end());
-    const gltf::Instances inst = gltf::traverse(doc, include.sceneIndex, include.transform, scene);
-    gltf::appendInstances(doc, inst, include.material, false, scene);  // JSON scenes: flattened
 }
 
 }  // namespace vkp

@@ -160,8 +160,9 @@ struct Environment {
 };
 
 /// A mesh stored once in object space and drawn by several instances: a glTF mesh that two or more
-/// nodes of the scene use (and that does not emit: lights are sampled in world space, so emissive
-/// meshes are always flattened). The loader makes these only when asked (GltfOptions::instancing);
+/// nodes of the scene use, or of a file a JSON scene includes several times (and that does not emit:
+/// lights are sampled in world space, so emissive meshes are always flattened). The loaders make
+/// these only when asked (GltfOptions::instancing, SceneJsonOptions::instancing);
 /// host/bvh/two_level.h builds one bottom-level BVH per mesh.
 struct InstancedMesh {
     std::string name;           ///< for messages, e.g. "mesh 0 (\"bunny\")"
@@ -184,8 +185,8 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<std::uint32_t> lights;  ///< indices into shapes of every sampled shape, in file order
-    /// Shared meshes and their instances (two-level BVH); empty unless a glTF file was loaded with
-    /// instancing. Never lights: an instanced mesh does not emit.
+    /// Shared meshes and their instances (two-level BVH); empty unless a glTF file was loaded (or
+    /// included) with instancing. Never lights: an instanced mesh does not emit.
     std::vector<InstancedMesh> meshes;
     std::vector<MeshInstance> instances;
     std::vector<TriangleVertices> triangleVertices;  ///< glTF triangles' corners (Shape::attributes)
@@ -197,12 +198,22 @@ struct Scene {
     std::vector<std::string> warnings;
 };
 
+/// Choices of the command line for a JSON scene.
+struct SceneJsonOptions {
+    /// --instancing auto: a mesh of an included glTF file that is drawn two or more times (by several
+    /// nodes, or by one node of a file included several times) and does not emit is stored once in
+    /// object space (Scene::meshes) with one Scene::instances entry per placement. false (--instancing
+    /// flatten, the library's default): every placement's triangles are in Scene::shapes.
+    bool instancing = false;
+};
+
 /// Load a scene in vkpath's JSON format (scenes/README.md). Throws InputError with one line
-/// "<file>: <json pointer>: <what is wrong>" on any bad input.
-Scene loadSceneJson(const std::filesystem::path& file);
+/// "<file>: <json pointer>: <what is wrong>" on any bad input (inside an included glTF file:
+/// "<file>: /objects/<i>: <glTF file>: <place>: <what is wrong>").
+Scene loadSceneJson(const std::filesystem::path& file, const SceneJsonOptions& options = {});
 
 /// The same from text already in memory; file is only used in messages and Scene::path.
-Scene parseSceneJson(std::string_view text, const std::filesystem::path& file);
+Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, const SceneJsonOptions& options = {});
 
 /// What the kernel renders for m: m itself, except for an emitting Pbr (diffuse_light) and a
 /// transmitting one (exact-Fresnel glass); see host/scene/gltf_kernel_material.cpp. Used by the

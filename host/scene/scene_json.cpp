@@ -105,7 +105,7 @@ void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std
 
 }  // namespace scenejson
 
-Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
+Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, const SceneJsonOptions& options) {
     const std::string name = file.string();
     const json::Json doc = json::parseDocument(std::string(text), name);
     json::Object top = json::Value(doc, "", name).object();
@@ -125,7 +125,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
     if (render) scene.render = scenejson::readRender(*render);
     std::map<std::string, std::uint32_t> index;
     scenejson::readMaterials(materials, scene, index);
-    scenejson::readObjects(objects, index, scene);
+    scenejson::readObjects(objects, index, options.instancing, scene);
     if (environment) {
         if (scene.render.background != glm::vec3(0.0f))
             environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
@@ -134,8 +134,8 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file) {
     return scene;
 }
 
-Scene loadSceneJson(const std::filesystem::path& file) {
-    return parseSceneJson(json::readTextFile(file), file);
+Scene loadSceneJson(const std::filesystem::path& file, const SceneJsonOptions& options) {
+    return parseSceneJson(json::readTextFile(file), file, options);
 }
 
 }  // namespace vkp

@@ -148,17 +148,25 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
     return out;
 }
 
+/// The include's file, resolved against the JSON file's folder.
+std::filesystem::path includePath(const std::string& name, const Scene& scene) {
+    std::filesystem::path file(name);
+    if (file.is_relative()) file = scene.path.parent_path() / file;
+    return file;
+}
+
 /// {"type": "gltf", "file": "...", "transform": [...], "material": "name"}: the triangles of a
 /// glTF file's default scene, file relative to the JSON file, placed by transform (after the
-/// file's own node transforms); "material" replaces every material of the file.
-void readGltfObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene) {
+/// file's own node transforms); "material" replaces every material of the file. A problem inside
+/// the file is one line naming the JSON file and object, then the glTF file and its part.
+void readGltfObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene,
+                    GltfIncludes& includes) {
     json::Object o = v.object();
     o.choice("type", {"gltf"});
     const json::Value fileValue = o.required("file");
     const std::string name = fileValue.string();
     if (name.empty()) fileValue.fail("must not be empty");
-    std::filesystem::path file(name);
-    if (file.is_relative()) file = scene.path.parent_path() / file;
+    const std::filesystem::path file = includePath(name, scene);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) {
         fileValue.fail("cannot read " + file.string() + ": " +
@@ -177,7 +185,11 @@ void readGltfObject(const json::Value& v, const std::map<std::string, std::uint3
         include.material = found->second;
     }
     o.finish();
-    appendGltf(scene, file, include);
+    try {
+        includes.append(file, include);
+    } catch (const InputError& e) {
+        v.fail(e.what());
+    }
 }
 
 bool isGltfObject(const json::Value& v) {
@@ -187,12 +199,35 @@ bool isGltfObject(const json::Value& v) {
     return t != j.end() && t->is_string() && t->get<std::string>() == "gltf";
 }
 
+/// Announce every include whose file and material resolve (the others fail when read), so that
+/// the includes know how often each file is placed before the first is.
+void expectIncludes(const json::Value& v, const std::map<std::string, std::uint32_t>& index, const Scene& scene,
+                    GltfIncludes& includes) {
+    for (const json::Value& item : v.array()) {
+        if (!isGltfObject(item)) continue;
+        const json::Json& j = item.json();
+        const auto f = j.find("file");
+        if (f == j.end() || !f->is_string() || f->get<std::string>().empty()) continue;
+        GltfInclude include;
+        if (const auto m = j.find("material"); m != j.end()) {
+            if (!m->is_string()) continue;
+            const auto found = index.find(m->get<std::string>());
+            if (found == index.end()) continue;
+            include.material = found->second;
+        }
+        includes.expect(includePath(f->get<std::string>(), scene), include);
+    }
+}
+
 }  // namespace
 
-void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene) {
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, bool instancing,
+                 Scene& scene) {
+    GltfIncludes includes(scene, instancing);
+    expectIncludes(v, index, scene, includes);
     for (const json::Value& item : v.array()) {
         if (isGltfObject(item)) {
-            readGltfObject(item, index, scene);
+            readGltfObject(item, index, scene, includes);
             continue;
         }
         for (const Shape& s : readObject(item, index, scene)) {

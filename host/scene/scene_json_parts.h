@@ -22,8 +22,10 @@ Camera readCamera(const json::Value& v);
 RenderSettings readRender(const json::Value& v);
 /// "materials": name -> material, appended in file order; index maps a name to its position.
 void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index);
-/// "objects": appends world-space shapes and the light list.
-void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene);
+/// "objects": appends world-space shapes and the light list; included glTF files through
+/// GltfIncludes (each file read once; with instancing, meshes drawn twice or more stored once).
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, bool instancing,
+                 Scene& scene);
 
 /// "environment": file (resolved against sceneFile's folder, read with core/image_io), strength,
 /// rotate_y. Image problems are reported at /environment/file.

@@ -53,6 +53,21 @@ TEST_F(GltfCli, InfoOfAGlbAndItsOtherScene) {
     EXPECT_NE(g.out.find("3 sampled objects (3 emitting)"), std::string::npos) << g.out;
 }
 
+TEST_F(GltfCli, InfoOfAJsonSceneIncludingAFileSeveralTimes) {
+    const std::string scene = (scenesDir() / "gltf" / "include-instances.json").string();
+    const ProcessResult a = run({"info", scene});  // --instancing auto is the default
+    EXPECT_EQ(a.exitCode, 0) << a.err;
+    EXPECT_TRUE(a.err.empty()) << a.err;
+    EXPECT_NE(a.out.find("instancing   25 instances of 6 shared meshes"), std::string::npos) << a.out;
+    EXPECT_NE(a.out.find("MB two-level (auto); flattened (--instancing flatten) about "), std::string::npos) << a.out;
+    EXPECT_NE(a.out.find("lights       12 sampled objects (12 emitting)"), std::string::npos) << a.out;
+    const ProcessResult f = run({"info", scene, "--instancing", "flatten"});
+    EXPECT_EQ(f.exitCode, 0) << f.err;
+    EXPECT_NE(f.out.find("instancing   none (--instancing flatten): geometry on the device"), std::string::npos) << f.out;
+    EXPECT_NE(f.out.find("lights       12 sampled objects (12 emitting)"), std::string::npos) << f.out;
+    EXPECT_NE(f.out.find("materials    6"), std::string::npos) << f.out;  // sage + the file's 5, once
+}
+
 TEST_F(GltfCli, ErrorsAreOneLineWithExitCode1) {
     std::ofstream(dir / "broken.glb", std::ios::binary) << "glTF\x02";
     std::filesystem::remove(dir / "out.png");

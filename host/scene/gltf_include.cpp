@@ -1,0 +1,57 @@
+// GltfIncludes (gltf.h): glTF files placed by a JSON scene, each distinct file read and stored once,
+// every include adding its placements (instances of the shared meshes, world-space triangles of the rest).
+#include <system_error>
+
+#include "scene/gltf_parts.h"
+
+namespace vkp {
+
+/// One distinct include: its document and placement state while includes of it remain.
+struct GltfIncludes::File {
+    std::uint32_t expected = 0;  ///< includes announced by expect()
+    std::uint32_t appended = 0;  ///< includes placed so far
+    std::unique_ptr<gltf::Document> doc;
+    std::unique_ptr<gltf::PlacementState> state;
+};
+
+GltfIncludes::GltfIncludes(Scene& scene, bool instancing) : scene_(scene), instancing_(instancing) {}
+GltfIncludes::~GltfIncludes() = default;
+
+GltfIncludes::Key GltfIncludes::key(const std::filesystem::path& file, const GltfInclude& include) {
+    std::error_code ec;
+    std::filesystem::path canonical = std::filesystem::canonical(file, ec);
+    if (ec) canonical = file.lexically_normal();
+    return {canonical.string(), include.sceneIndex ? std::int64_t(*include.sceneIndex) : -1,
+            include.material ? std::int64_t(*include.material) : -1};
+}
+
+void GltfIncludes::expect(const std::filesystem::path& file, const GltfInclude& include) {
+    std::unique_ptr<File>& f = files_[key(file, include)];
+    if (!f) f = std::make_unique<File>();
+    ++f->expected;
+}
+
+void GltfIncludes::append(const std::filesystem::path& file, const GltfInclude& include) {
+    std::unique_ptr<File>& f = files_[key(file, include)];
+    if (!f) f = std::make_unique<File>();
+    const bool first = !f->doc;
+    if (first) {
+        f->doc = std::make_unique<gltf::Document>(gltf::readDocument(file));
+        scene_.warnings.insert(scene_.warnings.end(), f->doc->warnings.begin(), f->doc->warnings.end());
+        f->state = std::make_unique<gltf::PlacementState>(
+            gltf::PlacementState{gltf::MaterialMapper(*f->doc, scene_, include.material)});
+    }
+    Scene ignoredWarnings;  // a later include repeats the first one's warnings about nodes
+    const gltf::Instances inst = gltf::traverse(*f->doc, include.sceneIndex, include.transform, first ? scene_ : ignoredWarnings);
+    gltf::appendInstances(*f->doc, inst, *f->state, instancing_, std::max<std::uint32_t>(f->expected, 1), scene_);
+    // The last announced include: the document is no longer needed (an include not announced would
+    // read the file again, as a file of its own).
+    if (++f->appended >= f->expected) {
+        f->state.reset();
+        f->doc.reset();
+        f->appended = 0;
+        f->expected = 0;
+    }
+}
+
+}  // namespace vkp
