@@ -48,7 +48,7 @@ render options:
   --light-pick P          power (default: emitters in proportion to their power) | uniform
   --light-sampling L      quads/triangles: auto (default: solid angle where the light looks large, else
                           area) | solid-angle (wherever precise) | area (the book's)
-  --solid-angle-min SR    auto's switch: solid angle from points where area/distance^2 >= SR (default 0.2)
+  --solid-angle-min SR    auto's switch: solid angle from points where area/distance^2 >= SR (default 0.1)
   --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
   --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full

@@ -63,10 +63,11 @@ bool parseLightSampling(const std::string& name, LightSampling& out) {
 
 std::vector<std::uint32_t> Features::specConstants() const {
     return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, parallelogramLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
+            sphereLights, quadLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
             vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling != LightSampling::Area,
             instances, workgroupX, workgroupY,
-            std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f)};
+            std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f),
+            triangleLights};
 }
 
 std::string Features::name() const {
@@ -84,7 +85,8 @@ std::string Features::name() const {
     add(mats, pbr, "pbr");
     add(mats, emitters, "emission");
     add(lights, sphereLights, "sphere");
-    add(lights, parallelogramLights, "quad/triangle");
+    add(lights, quadLights, "quad");
+    add(lights, triangleLights, "triangle");
     std::string out = "prims:";
     out += prims.empty() ? "none" : prims;
     out += " materials:";
@@ -115,7 +117,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     f.sampler = sampler;
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
-        f.sphereLights = f.parallelogramLights = f.defocus = f.environment = f.environmentMap = true;
+        f.sphereLights = f.quadLights = f.triangleLights = f.defocus = f.environment = f.environmentMap = true;
         f.vertexAttributes = f.textures = f.alpha = f.instances = true;
         return f;
     }
@@ -123,7 +125,11 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     forEachShape(scene, [&](const Shape& s) {
         (s.type == ShapeType::Sphere ? f.spheres : f.parallelograms) = true;
         used[s.material] = true;
-        if (s.sampled) (s.type == ShapeType::Sphere ? f.sphereLights : f.parallelogramLights) = true;
+        if (s.sampled) {
+            if (s.type == ShapeType::Sphere) f.sphereLights = true;
+            else if (s.type == ShapeType::Quad) f.quadLights = true;
+            else f.triangleLights = true;
+        }
     });
     f.instances = !scene.instances.empty();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {

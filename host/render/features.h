@@ -44,13 +44,13 @@ bool parseLightSampling(const std::string& name, LightSampling& out);
 /// Default apparent size (sr: light area / squared distance to its centre) from which `auto`
 /// light sampling switches from area to solid-angle sampling. Measured at equal time on the bench
 /// scenes (README "Numbers on this machine", "Solid angle or area").
-inline constexpr float kSolidAngleMinSize = 0.2f;
+inline constexpr float kSolidAngleMinSize = 0.1f;
 
 struct Features {
     bool spheres = false, parallelograms = false;  ///< primitive kinds present
     bool lambertian = false, metal = false, dielectric = false, emitters = false;
     bool pbr = false;  ///< glTF metallic-roughness materials (MaterialType::Pbr after kernelMaterial)
-    bool sphereLights = false, parallelogramLights = false;  ///< kinds in the light list
+    bool sphereLights = false, quadLights = false, triangleLights = false;  ///< kinds in the light list
     bool defocus = false;
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
@@ -64,9 +64,9 @@ struct Features {
     float solidAngleMinSize = kSolidAngleMinSize;  ///< for LightSampling::Auto (`--solid-angle-min`)
     std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..21, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// Values for constant_id 0..22, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
     /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size,
-    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits).
+    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits; 22: HAS_TRIANGLE_LIGHTS).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

@@ -13,7 +13,9 @@ layout(constant_id = 3) const bool HAS_METAL = true;
 layout(constant_id = 4) const bool HAS_DIELECTRIC = true;
 layout(constant_id = 5) const bool HAS_EMITTERS = true;
 layout(constant_id = 6) const bool HAS_SPHERE_LIGHTS = true;         // sampled spheres
-layout(constant_id = 7) const bool HAS_PARALLELOGRAM_LIGHTS = true;  // sampled quads/triangles
+layout(constant_id = 7) const bool HAS_QUAD_LIGHTS = true;           // sampled quads
+layout(constant_id = 22) const bool HAS_TRIANGLE_LIGHTS = true;      // sampled triangles (apart from quads:
+// every compiled-in light kind's sampling code runs at every vertex on lavapipe, DESIGN.md)
 layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_* below
 layout(constant_id = 9) const bool HAS_DEFOCUS = true;
 layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)

@@ -33,9 +33,9 @@ LightSample sampleLightPrim(GpuPrim p, vec3 x, vec2 xi) {
     vec3 e2 = primEdge2(p);
     if (inPrimPlane(p, x)) return s;  // a flat light seen edge-on from its own plane: no sample
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) s = sampleSphereLight(p0, p.p1.w, x, xi);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
+    if (HAS_QUAD_LIGHTS && kind == PRIM_QUAD)
         s = SOLID_ANGLE_QUADS ? sampleRectLight(p0, e1, e2, x, xi, SOLID_ANGLE_MIN_SIZE) : sampleQuadLight(p0, e1, e2, x, xi);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
+    if (HAS_TRIANGLE_LIGHTS && kind == PRIM_TRIANGLE)
         s = SOLID_ANGLE_QUADS ? sampleTriangleLightSolidAngle(p0, e1, e2, x, xi, SOLID_ANGLE_MIN_SIZE) : sampleTriangleLight(p0, e1, e2, x, xi);
     return s;
 }
@@ -49,9 +49,9 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     float pdf = 0.0f;
     if (inPrimPlane(p, x)) return 0.0f;  // as in sampleLightPrim
     if (HAS_SPHERE_LIGHTS && kind == PRIM_SPHERE) pdf = pdfSphereLight(p0, p.p1.w, x, d);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_QUAD)
+    if (HAS_QUAD_LIGHTS && kind == PRIM_QUAD)
         pdf = SOLID_ANGLE_QUADS ? pdfRectLight(p0, e1, e2, x, d, SOLID_ANGLE_MIN_SIZE) : pdfQuadLight(p0, e1, e2, x, d);
-    if (HAS_PARALLELOGRAM_LIGHTS && kind == PRIM_TRIANGLE)
+    if (HAS_TRIANGLE_LIGHTS && kind == PRIM_TRIANGLE)
         pdf = SOLID_ANGLE_QUADS ? pdfTriangleLightSolidAngle(p0, e1, e2, x, d, SOLID_ANGLE_MIN_SIZE) : pdfTriangleLight(p0, e1, e2, x, d);
     return pdf;
 }

@@ -64,6 +64,15 @@ VKP_FN bool rectLargeEnough(vec3 Q, vec3 u, vec3 v, vec3 p, float minSize) {
     return minSize <= 0.0f || apparentSize(length(cross(u, v)), Q + 0.5f * (u + v), p) >= minSize;
 }
 
+/// Solid angle (sr) of the parallelogram Q + a u + b v seen from p, as two triangles (Van Oosterom
+/// and Strackee; accurate when it looks small). sphericalRectInit stores exactly this value in S,
+/// and pdfRectLight computes it alone, without the paper's frame and angles.
+VKP_FN float rectSolidAngle(vec3 Q, vec3 u, vec3 v, vec3 p) {
+    vec3 a = Q - p;
+    vec3 c = a + u + v;
+    return triangleSolidAngle(a, a + u, c) + triangleSolidAngle(a, c, a + v);
+}
+
 /// Setup of the paper's algorithm 1 ("SphQuadInit").
 VKP_FN SphericalRect sphericalRectInit(vec3 Q, vec3 u, vec3 v, vec3 p) {
     SphericalRect r;
@@ -97,7 +106,7 @@ VKP_FN SphericalRect sphericalRectInit(vec3 Q, vec3 u, vec3 v, vec3 p) {
     r.k = VKP_TWO_PI - g2 - g3;
     // The paper's S = g0 + g1 - k loses precision to cancellation when the rectangle looks small;
     // the same solid angle from two triangles does not (g0, g1 are then not needed).
-    r.S = triangleSolidAngle(v00, v10, v11) + triangleSolidAngle(v00, v11, v01);
+    r.S = rectSolidAngle(Q, u, v, p);
 
     return r;
 }
@@ -107,10 +116,11 @@ VKP_FN SphericalRect sphericalRectInit(vec3 Q, vec3 u, vec3 v, vec3 p) {
 /// so close to a hemisphere (p almost on the rectangle) that the parametrization degenerates: from
 /// a point within rounding of the light's plane, solid-angle sampling would return steep
 /// directions that area sampling rightly gives no weight.
-VKP_FN bool useSphericalRect(vec3 u, vec3 v, SphericalRect r) {
+VKP_FN bool useSphericalRectS(vec3 u, vec3 v, float S) {
     bool rectangle = abs(dot(u, v)) <= 1.0e-5f * length(u) * length(v);
-    return rectangle && r.S > RECT_MIN_SOLID_ANGLE && r.S < 0.999f * VKP_TWO_PI;
+    return rectangle && S > RECT_MIN_SOLID_ANGLE && S < 0.999f * VKP_TWO_PI;
 }
+VKP_FN bool useSphericalRect(vec3 u, vec3 v, SphericalRect r) { return useSphericalRectS(u, v, r.S); }
 
 /// The point of the rectangle at xi in [0,1)^2 (paper's algorithm "SphQuadSample").
 VKP_FN vec3 sphericalRectPoint(SphericalRect r, vec2 xi) {
@@ -133,27 +143,33 @@ VKP_FN vec3 sphericalRectPoint(SphericalRect r, vec2 xi) {
 
 /// Whether sampleRectLight(Q, u, v, p, ., minSize) samples in solid angle (else in area).
 VKP_FN bool rectLightUsesSolidAngle(vec3 Q, vec3 u, vec3 v, vec3 p, float minSize) {
-    return rectLargeEnough(Q, u, v, p, minSize) && useSphericalRect(u, v, sphericalRectInit(Q, u, v, p));
+    return rectLargeEnough(Q, u, v, p, minSize) && useSphericalRectS(u, v, rectSolidAngle(Q, u, v, p));
 }
 
 /// Direction from p to a point of the quad Q + a u + b v: uniform in solid angle (pdf 1/S) when
 /// the quad looks at least minSize large from p (rectLargeEnough; sr, 0: always) and
 /// useSphericalRect, otherwise uniform in area (sampleQuadLight). pdf 0: no sample.
+/// (One call of the area fallback: on lavapipe every call site runs, taken or not; DESIGN.md.)
 VKP_FN LightSample sampleRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec2 xi, float minSize) {
-    if (!rectLargeEnough(Q, u, v, p, minSize)) return sampleQuadLight(Q, u, v, p, xi);
-    SphericalRect r = sphericalRectInit(Q, u, v, p);
-    if (!useSphericalRect(u, v, r)) return sampleQuadLight(Q, u, v, p, xi);
-    return makeLightSample(p, sphericalRectPoint(r, xi), 1.0f / r.S);
+    if (rectLargeEnough(Q, u, v, p, minSize)) {
+        SphericalRect r = sphericalRectInit(Q, u, v, p);
+        if (useSphericalRect(u, v, r)) return makeLightSample(p, sphericalRectPoint(r, xi), 1.0f / r.S);
+    }
+    return sampleQuadLight(Q, u, v, p, xi);
 }
 
 /// Solid-angle density with which sampleRectLight(Q, u, v, p, ., minSize) produces unit direction dir.
+/// Only the solid angle is computed (rectSolidAngle), not the sampling frame; one ray cast serves
+/// both strategies.
 VKP_FN float pdfRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec3 dir, float minSize) {
-    if (!rectLargeEnough(Q, u, v, p, minSize)) return pdfQuadLight(Q, u, v, p, dir);
-    SphericalRect r = sphericalRectInit(Q, u, v, p);
-    if (!useSphericalRect(u, v, r)) return pdfQuadLight(Q, u, v, p, dir);
     vec2 ab;
     float t = intersectParallelogram(Q, u, v, false, p, dir, 0.0f, VKP_FAR, ab);
-    return (t == VKP_FAR) ? 0.0f : lightPdfOrZero(1.0f / r.S);
+    if (t == VKP_FAR) return 0.0f;
+    if (rectLargeEnough(Q, u, v, p, minSize)) {
+        float S = rectSolidAngle(Q, u, v, p);
+        if (useSphericalRectS(u, v, S)) return lightPdfOrZero(1.0f / S);
+    }
+    return planarLightPdfFromHit(u, v, false, dir, t);
 }
 
 VKP_END

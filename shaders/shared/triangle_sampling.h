@@ -84,13 +84,9 @@ VKP_FN bool triangleLightUsesSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, float
     return triangleLargeEnough(v0, e1, e2, p, minSize) && useSphericalTriangle(triangleLightSolidAngle(v0, e1, e2, p));
 }
 
-/// Direction from p to a point of the triangle v0 + a e1 + b e2: uniform in solid angle (pdf 1/S)
-/// when the triangle looks at least minSize large from p (triangleLargeEnough; sr, 0: always) and
-/// useSphericalTriangle, otherwise uniform in area (sampleTriangleLight). pdf 0: no sample.
-VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi, float minSize) {
-    if (!triangleLargeEnough(v0, e1, e2, p, minSize)) return sampleTriangleLight(v0, e1, e2, p, xi);
-    float S = triangleLightSolidAngle(v0, e1, e2, p);
-    if (!useSphericalTriangle(S)) return sampleTriangleLight(v0, e1, e2, p, xi);
+/// The solid-angle strategy of sampleTriangleLightSolidAngle: a direction from p uniform in the
+/// triangle's solid angle S (> 0, from triangleLightSolidAngle), pdf 1/S.
+VKP_FN LightSample sampleSphericalTriangleLight(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi, float S) {
     vec3 a = v0 - p;
     vec3 w = sampleSphericalTriangle(normalize(a), normalize(a + e1), normalize(a + e2), xi);
     vec3 n = cross(e1, e2);
@@ -120,14 +116,29 @@ VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3
     return makeLightSample(p, v0 + b1 * e1 + b2 * e2, 1.0f / S);
 }
 
+/// Direction from p to a point of the triangle v0 + a e1 + b e2: uniform in solid angle (pdf 1/S)
+/// when the triangle looks at least minSize large from p (triangleLargeEnough; sr, 0: always) and
+/// useSphericalTriangle, otherwise uniform in area (sampleTriangleLight). pdf 0: no sample.
+/// (One call of the area fallback: on lavapipe every call site runs, taken or not; DESIGN.md.)
+VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi, float minSize) {
+    if (triangleLargeEnough(v0, e1, e2, p, minSize)) {
+        float S = triangleLightSolidAngle(v0, e1, e2, p);
+        if (useSphericalTriangle(S)) return sampleSphericalTriangleLight(v0, e1, e2, p, xi, S);
+    }
+    return sampleTriangleLight(v0, e1, e2, p, xi);
+}
+
 /// Solid-angle density with which sampleTriangleLightSolidAngle(v0, e1, e2, p, ., minSize) produces dir.
+/// One ray cast serves both strategies.
 VKP_FN float pdfTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec3 dir, float minSize) {
-    if (!triangleLargeEnough(v0, e1, e2, p, minSize)) return pdfTriangleLight(v0, e1, e2, p, dir);
-    float S = triangleLightSolidAngle(v0, e1, e2, p);
-    if (!useSphericalTriangle(S)) return pdfTriangleLight(v0, e1, e2, p, dir);
     vec2 ab;
     float t = intersectParallelogram(v0, e1, e2, true, p, dir, 0.0f, VKP_FAR, ab);
-    return (t == VKP_FAR) ? 0.0f : lightPdfOrZero(1.0f / S);
+    if (t == VKP_FAR) return 0.0f;
+    if (triangleLargeEnough(v0, e1, e2, p, minSize)) {
+        float S = triangleLightSolidAngle(v0, e1, e2, p);
+        if (useSphericalTriangle(S)) return lightPdfOrZero(1.0f / S);
+    }
+    return planarLightPdfFromHit(e1, e2, true, dir, t);
 }
 
 VKP_END

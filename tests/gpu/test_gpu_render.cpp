@@ -233,7 +233,7 @@ TEST(GpuRender, SamplersAgreeOnCornellBook3) {
 // Every shipped scene, every sampler: no NaN/Inf sample and no path cut by the loop guard.
 TEST(GpuRender, NoNonFiniteSamplesOnShippedScenes) {
     VKP_REQUIRE_DEVICE(dev);
-    for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "spheres-book1.json", "env-sky.json"}) {
+    for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "cornell-biglight.json", "spheres-book1.json", "env-sky.json"}) {
         for (Sampler s : kAllSamplers) {
             TestRender r = makeRender(dev, scenesDir() / name, 32, 24, s);
             r.renderer->addSamples(8);
