@@ -268,6 +268,29 @@ inline double footprintMean(const gpu::GpuFrame& f, std::uint32_t i, std::uint32
 
 const char* const kChannel[] = {"R", "G", "B"};
 
+/// Two independent renders of the same image (size x size pixels) that must agree within noise:
+/// the whole image (printed) and every block x block square, per channel, z-test of a - b against 0
+/// (3 x (1 + (size / block)^2) tests of zBudget()). `what` names the pair in messages. Returns the
+/// whole image's mean of a per channel, for checks that the scene is lit.
+inline glm::dvec3 expectRendersAgree(const PixelStats& a, const PixelStats& b, std::uint32_t size, std::uint32_t block,
+                                     const std::string& what) {
+    std::vector<std::pair<std::string, std::vector<Pixel>>> regions = {{"image", rect(0, 0, size, size)}};
+    for (std::uint32_t by = 0; by < size; by += block)
+        for (std::uint32_t bx = 0; bx < size; bx += block)
+            regions.push_back({"block " + std::to_string(bx) + "," + std::to_string(by), rect(bx, by, bx + block, by + block)});
+    glm::dvec3 imageMean(0.0);
+    for (const auto& [name, px] : regions)
+        for (int c = 0; c < 3; ++c) {
+            const Estimate ea = average(a, px, c), eb = average(b, px, c);
+            if (name == "image") imageMean[c] = ea.mean;
+            Estimate d = ea;
+            d.mean = ea.mean - eb.mean;
+            d.var = ea.var + eb.var;
+            EXPECT_TRUE(withinNoise(d, 0.0, what + ", " + name + ", " + kChannel[c], name == "image"));
+        }
+    return imageMean;
+}
+
 /// Every sampler the renderer knows (found by name, so that samplers added later are covered).
 inline std::vector<Sampler> samplersUnderTest() {
     std::vector<Sampler> out;

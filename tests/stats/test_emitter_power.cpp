@@ -66,6 +66,21 @@ void addTriangle(Scene& s, std::uint32_t material, const glm::vec2 p[3], const g
     s.shapes.push_back(t);
 }
 
+/// Scene s gets image 0: 16 x 16, white where x < whiteColumns; texture 0 on it (clamped, sRGB,
+/// nearest or bilinear filtering); and material 0, an emitter with emissiveTexture 0.
+void addHalfWhiteEmitter(Scene& s, std::uint32_t whiteColumns, bool nearest) {
+    s.images.push_back(image(16, 16, [whiteColumns](std::uint32_t x, std::uint32_t) { return x < whiteColumns; }));
+    Texture tex;
+    tex.image = 0;
+    tex.wrapS = tex.wrapT = TextureWrap::ClampToEdge;
+    tex.nearest = nearest;
+    tex.srgb = true;
+    s.textures.push_back(tex);
+    TextureRef ref;
+    ref.texture = 0;
+    s.materials.push_back(emitter(ref));
+}
+
 /// A quad [x0, x1] x [0, 1] (world = UV) as two triangles.
 void addQuad(Scene& s, std::uint32_t material, float x0, float x1) {
     const glm::vec2 a[3] = {{x0, 0}, {x1, 0}, {x1, 1}}, b[3] = {{x0, 0}, {x1, 1}, {x0, 1}};
@@ -81,16 +96,7 @@ void addQuad(Scene& s, std::uint32_t material, float x0, float x1) {
 // black with no white within reach: power 0, never picked.
 TEST(EmitterPower, HalfBlackTexturePicksByTrianglePower) {
     Scene s;
-    s.images.push_back(image(16, 16, [](std::uint32_t x, std::uint32_t) { return x < 8; }));
-    Texture tex;
-    tex.image = 0;
-    tex.wrapS = tex.wrapT = TextureWrap::ClampToEdge;
-    tex.nearest = true;
-    tex.srgb = true;
-    s.textures.push_back(tex);
-    TextureRef ref;
-    ref.texture = 0;
-    s.materials.push_back(emitter(ref));
+    addHalfWhiteEmitter(s, 8, true);
     for (int i = 0; i < 4; ++i) addQuad(s, 0, 0.25f * float(i), 0.25f * float(i + 1));
     const double area = 0.125, floor = 0.01 * 0.5 * kLum;
     const double want[8] = {kLum, kLum, kLum, kLum, floor, floor, 0.0, 0.0};
@@ -115,15 +121,7 @@ TEST(EmitterPower, HalfBlackTexturePicksByTrianglePower) {
 // quad at x in [12.8, 16] has no white texel within reach: exactly 0.
 TEST(EmitterPower, BlackButWithinReachOfBrightTexelsIsNeverZero) {
     Scene s;
-    s.images.push_back(image(16, 16, [](std::uint32_t x, std::uint32_t) { return x < 8; }));
-    Texture tex;
-    tex.image = 0;
-    tex.wrapS = tex.wrapT = TextureWrap::ClampToEdge;
-    tex.srgb = true;
-    s.textures.push_back(tex);
-    TextureRef ref;
-    ref.texture = 0;
-    s.materials.push_back(emitter(ref));
+    addHalfWhiteEmitter(s, 8, false);
     addQuad(s, 0, 8.45f / 16.0f, 1.0f);
     addQuad(s, 0, 12.8f / 16.0f, 1.0f);
     const double floor = 0.01 * 0.5 * kLum;
@@ -198,16 +196,9 @@ TEST(EmitterPower, WrapModesAndTextureTransformMoveTheFootprint) {
 // centroid average is exactly 3/4. With offset (0.25, 0) the white part is u' < 0.25, u < 0: none.
 TEST(EmitterPower, PartlyBrightFootprintAveragesByArea) {
     Scene s;
-    s.images.push_back(image(16, 16, [](std::uint32_t x, std::uint32_t) { return x < 4; }));
-    Texture tex;
-    tex.image = 0;
-    tex.wrapS = tex.wrapT = TextureWrap::ClampToEdge;
-    tex.nearest = true;
-    tex.srgb = true;
-    s.textures.push_back(tex);
+    addHalfWhiteEmitter(s, 4, true);
     TextureRef ref;
     ref.texture = 0;
-    s.materials.push_back(emitter(ref));
     ref.offset = glm::vec2(0.25f, 0.0f);
     s.materials.push_back(emitter(ref));
     const glm::vec2 p[3] = {{0, 0}, {0.5f, 0}, {0, 0.5f}};
