@@ -67,7 +67,7 @@ std::vector<std::uint32_t> Features::specConstants() const {
             vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling != LightSampling::Area,
             instances, workgroupX, workgroupY,
             std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f),
-            triangleLights};
+            triangleLights, extensionTextures};
 }
 
 std::string Features::name() const {
@@ -107,6 +107,7 @@ std::string Features::name() const {
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";
     if (textures) out += " textures";
+    if (extensionTextures) out += " extension-textures";
     if (alpha) out += " alpha";
     if (instances) out += " instances";
     return out;
@@ -118,7 +119,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.quadLights = f.triangleLights = f.defocus = f.environment = f.environmentMap = true;
-        f.vertexAttributes = f.textures = f.alpha = f.instances = true;
+        f.vertexAttributes = f.textures = f.extensionTextures = f.alpha = f.instances = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -145,6 +146,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     f.environment = hasEnvironmentLight(scene);
     f.environmentMap = scene.environment.hasMap();
     f.textures = sceneHasTextures(scene);
+    f.extensionTextures = sceneHasExtensionTextures(scene);
     f.alpha = sceneHasAlpha(scene);
     f.vertexAttributes = f.textures || f.alpha || sceneHasVertexAttributes(scene);  // textures need the UVs
     return f;

@@ -36,7 +36,8 @@ TextureRef emissiveTextureOf(const Material& original) {
 bool materialReadsTextures(const Material& original) {
     const Material m = kernelMaterial(original);
     if (m.type == MaterialType::Pbr)
-        return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid();
+        return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid() ||
+               m.pbr.specularTexture.valid() || m.pbr.specularColorTexture.valid();
     return emissiveTextureOf(original).valid();
 }
 
@@ -51,6 +52,16 @@ bool sceneHasTextures(const Scene& scene) {
     const std::vector<bool> used = usedMaterials(scene);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
         if (used[i] && materialReadsTextures(scene.materials[i])) return true;
+    return false;
+}
+
+bool sceneHasExtensionTextures(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material m = kernelMaterial(scene.materials[i]);
+        if (m.type == MaterialType::Pbr && (m.pbr.specularTexture.valid() || m.pbr.specularColorTexture.valid())) return true;
+    }
     return false;
 }
 
@@ -92,7 +103,9 @@ TexturePack packTextures(const Scene& scene) {
         packSlot(pbr ? m.pbr.metallicRoughnessTexture : none, rec + 2 * kTexSlotMetallicRoughness);
         packSlot(pbr ? m.pbr.normalTexture : none, rec + 2 * kTexSlotNormal);
         packSlot(emissiveTextureOf(scene.materials[i]), rec + 2 * kTexSlotEmissive);
-        rec[2 * kTexSlots] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
+        packSlot(pbr ? m.pbr.specularTexture : none, rec + 2 * kTexSlotSpecular);
+        packSlot(pbr ? m.pbr.specularColorTexture : none, rec + 2 * kTexSlotSpecularColor);
+        rec[gpu::MAT_TEX_ALPHA_TEXEL] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
                                         bits(m.pbr.baseColor.w));
     }
     std::vector<std::uint32_t> imageStart(scene.images.size(), 0);

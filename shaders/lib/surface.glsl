@@ -5,10 +5,9 @@
 // Buffers (host/render/texture_pack.h; binding numbers must match host/render/renderer.cpp):
 //   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, 0) | n0 | n1 | n2 |
 //                           t0 | t1 | t2 (flags: TriangleVertices::kHas*; zeros for other primitives);
-//   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at 1 + 9 m: per
-//                           slot (SLOT_*) the transform (rotation x scale) and (offset, header index
-//                           or 0xffffffff, 0), then (alpha mode, cutoff, normal scale, alpha factor);
-//                           texture headers as in shared/texture_sample.h;
+//   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at
+//                           1 + MAT_TEX_TEXELS m (layout: shared/texture_record.h); texture headers
+//                           as in shared/texture_sample.h;
 //   uTexels     (R32UI):    RGBA8 texels of every image.
 //
 // Shading normals: the interpolated NORMAL (and the normal map) only orient the BRDF's frame. They
@@ -23,6 +22,9 @@
 
 layout(constant_id = 13) const bool HAS_VERTEX_ATTRIBUTES = true;  // UVs and shading normals of mesh triangles
 layout(constant_id = 14) const bool HAS_TEXTURES = true;           // materials read textures
+// ... and some MAT_PBR material reads a KHR_materials_specular texture (specularTexture,
+// specularColorTexture): their two lookups run at every PBR hit of a variant that has them.
+layout(constant_id = 23) const bool HAS_EXTENSION_TEXTURES = true;
 
 layout(set = 0, binding = 12) uniform usamplerBuffer uAttributes;
 layout(set = 0, binding = 13) uniform usamplerBuffer uTexInfo;
@@ -30,23 +32,18 @@ layout(set = 0, binding = 14) uniform usamplerBuffer uTexels;
 
 #define VKP_TEXEL_FETCH(i) texelFetch(uTexels, int(i)).x
 #include "shared/texture_sample.h"
+#include "shared/texture_record.h"
 
 const uint ATTR_TEXELS = 8u;
 const uint ATTR_HAS_NORMAL = 1u;  // TriangleVertices flags (host/scene/scene.h)
 const uint ATTR_HAS_UV = 2u;
 const uint ATTR_HAS_TANGENT = 4u;
-const uint MAT_TEX_TEXELS = 9u;
-const uint SLOT_BASE_COLOR = 0u;
-const uint SLOT_METALLIC_ROUGHNESS = 1u;
-const uint SLOT_NORMAL = 2u;
-const uint SLOT_EMISSIVE = 3u;
-const uint NO_TEXTURE = 0xffffffffu;
 
 /// Sample texture slot `slot` of the material record at `rec` at uv; false if the slot is empty.
 bool sampleSlot(uint rec, uint slot, vec2 uv, out vec4 c) {
     c = vec4(1.0f);
     uvec4 t1 = texelFetch(uTexInfo, int(rec + 2u * slot + 1u));
-    if (t1.z == NO_TEXTURE) return false;
+    if (t1.z == TEX_NO_TEXTURE) return false;
     vec4 rs = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * slot)));
     uint headerBase = texelFetch(uTexInfo, 0).x;
     c = texSample(texelFetch(uTexInfo, int(headerBase + t1.z)), texTransform(uv, rs, uintBitsToFloat(t1.xy)));
@@ -91,12 +88,18 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
         uint rec = 1u + MAT_TEX_TEXELS * mi;
         vec4 c;
-        if (sampleSlot(rec, SLOT_BASE_COLOR, uv, c)) m.m0.xyz *= c.xyz;
-        if (sampleSlot(rec, SLOT_METALLIC_ROUGHNESS, uv, c)) {
+        if (sampleSlot(rec, TEX_SLOT_BASE_COLOR, uv, c)) m.m0.xyz *= c.xyz;
+        if (sampleSlot(rec, TEX_SLOT_METALLIC_ROUGHNESS, uv, c)) {
             m.m3.x *= c.z;  // metallic in B
             m.m3.y *= c.y;  // roughness in G
         }
-        if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
+        if (HAS_EXTENSION_TEXTURES) {
+            // KHR_materials_specular: specular = specularFactor x specularTexture.a (linear),
+            // specularColor = specularColorFactor x specularColorTexture.rgb (sRGB-decoded).
+            if (sampleSlot(rec, TEX_SLOT_SPECULAR, uv, c)) m.m2.w *= c.w;
+            if (sampleSlot(rec, TEX_SLOT_SPECULAR_COLOR, uv, c)) m.m2.xyz *= c.xyz;
+        }
+        if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, TEX_SLOT_NORMAL, uv, c)) {
             // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
             if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
             vec4 t0 = fetchF(uAttributes, base + 5);
@@ -113,7 +116,7 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
             if (tl > 0.0f) {
                 tt /= tl;
                 vec3 bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
-                float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * 4u)).z);
+                float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL)).z);
                 vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
                 vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
                 float nl = length(nm);
@@ -126,7 +129,7 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
     }
     if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & ATTR_HAS_UV) != 0u) {
         vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
-        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, SLOT_EMISSIVE, w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy, c)) m.m1.xyz *= c.xyz;
+        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, TEX_SLOT_EMISSIVE, w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy, c)) m.m1.xyz *= c.xyz;
     }
     if (!hasN) return ns;
     if (dot(n, ns) < 0.0f) n = -n;              // the side the ray arrived on
@@ -154,7 +157,7 @@ void emissiveTextureAt(uint prim, GpuPrim p, vec3 x, inout GpuMaterial m) {
     vec4 a1 = fetchF(uAttributes, base + 1);
     if ((floatBitsToUint(a1.z) & ATTR_HAS_UV) == 0u) return;
     vec4 c;
-    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), SLOT_EMISSIVE, (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy, c))
+    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), TEX_SLOT_EMISSIVE, (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy, c))
         m.m1.xyz *= c.xyz;
 }
 

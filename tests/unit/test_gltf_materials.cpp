@@ -180,6 +180,38 @@ TEST_F(Materials, TransmissionIorSpecularAlphaAndDefault) {
     EXPECT_EQ(kd.pbr.roughness, 1.0f);
 }
 
+// KHR_materials_specular textures (github.com/KhronosGroup/glTF, extensions/2.0/Khronos/
+// KHR_materials_specular/README.md): specularTexture is linear, its A channel scales
+// specularFactor; specularColorTexture is sRGB, its RGB scales specularColorFactor.
+TEST(GltfSpecularTextures, ReadWithTheirColourSpacesAndNoWarning) {
+    const Scene s = loadSceneGltf(gltfScene("specular-textures.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.materials.size(), 3u);
+    const Material& half = s.materials[0];
+    EXPECT_EQ(half.name, "specular-half");
+    EXPECT_EQ(half.pbr.specular, 1.0f);  // the default factor
+    ASSERT_TRUE(half.pbr.specularTexture.valid());
+    EXPECT_EQ(half.pbr.specularTexture.texCoord, 0u);
+    EXPECT_FALSE(half.pbr.specularColorTexture.valid());
+    const Texture& st = s.textures.at(std::size_t(half.pbr.specularTexture.texture));
+    EXPECT_FALSE(st.srgb);
+    EXPECT_TRUE(st.nearest);
+    EXPECT_EQ(st.wrapS, TextureWrap::ClampToEdge);
+    const TextureImage& a = s.images.at(st.image);  // alpha 0 | 255, RGB a decoy
+    EXPECT_EQ(pixel(a, 0, 0), glm::uvec4(255, 255, 255, 0));
+    EXPECT_EQ(pixel(a, 1, 0), glm::uvec4(0, 0, 0, 255));
+
+    const Material& color = s.materials[2];
+    EXPECT_EQ(color.name, "specular-color-half");
+    EXPECT_EQ(color.pbr.specularColor, glm::vec3(1.0f));
+    EXPECT_FALSE(color.pbr.specularTexture.valid());
+    ASSERT_TRUE(color.pbr.specularColorTexture.valid());
+    const Texture& ct = s.textures.at(std::size_t(color.pbr.specularColorTexture.texture));
+    EXPECT_TRUE(ct.srgb);
+    EXPECT_EQ(pixel(s.images.at(ct.image), 1, 0), glm::uvec4(0, 128, 255, 0));
+    for (const Material& m : s.materials) EXPECT_EQ(kernelMaterial(m).type, MaterialType::Pbr);
+}
+
 TEST(GltfEmissive, GlbWithEmbeddedImageAndSingleAndDoubleSidedLights) {
     const Scene s = loadSceneGltf(gltfScene("emissive.glb"));
     EXPECT_TRUE(s.warnings.empty());
