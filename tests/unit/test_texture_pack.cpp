@@ -50,7 +50,7 @@ TEST(TexturePack, SpecularTexturesFillTheirSlotsAndTheirVariant) {
     EXPECT_FALSE(sceneHasExtensionTextures(texturesScene()));  // base colour, metallicRoughness, normal only
     // The variant: constant_id 23 (HAS_EXTENSION_TEXTURES) on for this scene only.
     const std::vector<std::uint32_t> on = sceneFeatures(scene, Sampler::Mis).specConstants();
-    ASSERT_EQ(on.size(), 24u);
+    ASSERT_EQ(on.size(), 25u);
     EXPECT_EQ(on[23], 1u);
     EXPECT_EQ(sceneFeatures(texturesScene(), Sampler::Mis).specConstants().at(23), 0u);
     EXPECT_NE(sceneFeatures(scene, Sampler::Mis).name().find(" extension-textures"), std::string::npos);
