@@ -1,10 +1,13 @@
-// Surface attributes of glTF mesh triangles at a hit: UV (TEXCOORD_0), interpolated shading normal,
+// Surface attributes of glTF mesh triangles at a hit: UVs (TEXCOORD_0, _1), interpolated shading normal,
 // normal map, and the textures of MAT_PBR materials. Compiled in only for scenes that need it
 // (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES; host/render/features.cpp). Included by pathtrace.comp.
 //
 // Buffers (host/render/texture_pack.h; binding numbers must match host/render/renderer.cpp):
-//   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, 0) | n0 | n1 | n2 |
-//                           t0 | t1 | t2 (flags: TriangleVertices::kHas*; zeros for other primitives);
+//   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, uv1At) | n0 | n1 |
+//                           n2 | t0 | t1 | t2 (TEXCOORD_0 of the corners; flags: TriangleVertices::
+//                           kHas*; zeros for other primitives); after all of them, for triangles
+//                           with TEXCOORD_1 (ATTR_HAS_UV1), its corners (c0, c1) | (c2, 0, 0) at
+//                           texel uv1At;
 //   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at
 //                           1 + MAT_TEX_TEXELS m (layout: shared/texture_record.h); texture headers
 //                           as in shared/texture_sample.h;

@@ -5,7 +5,8 @@
 // RGBA32UI texels, material m's record at texel 1 + MAT_TEX_TEXELS m of the texture-info buffer:
 //   per slot s (TEX_SLOT_*), two texels at 2 s and 2 s + 1:
 //     (rotation x scale as rs: cos sx, sin sy, -sin sx, cos sy; float bits)
-//     (offset.x, offset.y (float bits), texture header index or TEX_NO_TEXTURE, 0)
+//     (offset.x, offset.y (float bits), texture header index or TEX_NO_TEXTURE, UV set: 0 for
+//      TEXCOORD_0, 1 for TEXCOORD_1)
 //   then at MAT_TEX_ALPHA_TEXEL: (alpha mode, alphaCutoff, normalTexture.scale, baseColorFactor.a).
 #ifndef VKP_TEXTURE_RECORD_H
 #define VKP_TEXTURE_RECORD_H
