@@ -30,6 +30,25 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                test_gpu_emissive_texture.cpp): a panel of 128 triangles under a
                                32x32 texture that is dark (sRGB 1/255) but for a bright 4x4 square,
                                over a floor
+  specular-textures.gltf       KHR_materials_specular textures on the device (tests/gpu/
+                               test_gpu_specular_textures.cpp, test_gltf_materials.cpp): three
+                               2 x 2 quads (quad i at x in [2.5 i, 2.5 i + 2], y in [0, 2], facing
+                               +z, UV (0, 0) top left to (1, 1) bottom right), base colour 0.1,
+                               roughness 0.5: a specularTexture whose alpha is 0 in the left half
+                               and 1 in the right (2x1, nearest, clamp), a uniform one of alpha
+                               128/255 (1x1), and a specularColorTexture white in the left half and
+                               sRGB (0, 128, 255) in the right
+  transmission-textures.gltf   a KHR_materials_transmission transmissionTexture (tests/gpu/
+                               test_gpu_transmission_texture.cpp): two quads laid out as in
+                               specular-textures.gltf, base colour 0.5, transmissionFactor 1 x a
+                               texture whose R is 0 in the left half and 1 in the right (2x1,
+                               nearest, clamp), and x a uniform R of 128/255 (1x1)
+  texcoord1.gltf               textureInfo.texCoord 1 (tests/gpu/test_gpu_texcoord1.cpp,
+                               test_gltf_materials.cpp): two quads laid out as in
+                               specular-textures.gltf whose TEXCOORD_0 is mirrored (u -> 1 - u) and
+                               whose TEXCOORD_1 (normalized uint16) is not: a baseColorTexture and a
+                               specularTexture (alpha 0 | 1), both 2x1, nearest, clamp, through
+                               TEXCOORD_1
   instances.gltf               instancing (tests/gpu/test_gpu_instancing.cpp, test_gltf_loader.cpp):
                                a lumpy blob with NORMALs used by 5 nodes (translated, rotated, a
                                non-uniform scale, a mirror, a mirror inside a rotated parent), a
@@ -521,6 +540,100 @@ def emissive_spot(out):
     g.write_gltf(out / "emissive-spot.gltf")
 
 
+def specular_textures(out):
+    """KHR_materials_specular specularTexture (A) and specularColorTexture (RGB, sRGB): see the
+    docstring at the top. RGB of the specular textures and A of the colour one are decoys: the
+    kernel must read the other channels."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+    g.doc["images"] = [{"uri": data_png(2, 1, [[(255, 255, 255, 0), (0, 0, 0, 255)]])},
+                       {"uri": data_png(1, 1, [[(0, 0, 0, 128)]])},
+                       {"uri": data_png(2, 1, [[(255, 255, 255, 0), (0, 128, 255, 0)]])}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 33071, "wrapT": 33071}]
+    g.doc["textures"] = [{"source": i, "sampler": 0} for i in range(3)]
+
+    def mat(name, spec):
+        return {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.1, 0.1, 1], "metallicFactor": 0,
+                                                        "roughnessFactor": 0.5},
+                "extensions": {"KHR_materials_specular": spec}}
+    g.doc["materials"] = [
+        mat("specular-half", {"specularTexture": {"index": 0}}),
+        mat("specular-uniform", {"specularTexture": {"index": 1}}),
+        mat("specular-color-half", {"specularColorFactor": [1, 1, 1], "specularColorTexture": {"index": 2}}),
+    ]
+    uv = [0, 0, 1, 0, 1, 1, 0, 1]
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "specular-textures.gltf")
+
+
+def transmission_textures(out):
+    """KHR_materials_transmission transmissionTexture (R, linear): see the docstring at the top.
+    G, B and A are decoys (the opposite of R)."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_transmission"]
+    g.doc["images"] = [{"uri": data_png(2, 1, [[(0, 255, 255, 255), (255, 0, 0, 0)]])},
+                       {"uri": data_png(1, 1, [[(128, 0, 0, 0)]])}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 33071, "wrapT": 33071}]
+    g.doc["textures"] = [{"source": i, "sampler": 0} for i in range(2)]
+    g.doc["materials"] = [
+        {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0,
+                                                "roughnessFactor": 0.5},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": i}}}}
+        for i, name in enumerate(["transmission-half", "transmission-uniform"])]
+    uv = [0, 0, 1, 0, 1, 1, 0, 1]
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "transmission-textures.gltf")
+
+
+def texcoord1(out):
+    """textureInfo.texCoord 1: see the docstring at the top."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+    g.doc["images"] = [{"uri": data_png(2, 1, [[(255, 64, 0, 255), (0, 64, 255, 255)]])},
+                       {"uri": data_png(2, 1, [[(255, 255, 255, 0), (0, 0, 0, 255)]])}]
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 33071, "wrapT": 33071}]
+    g.doc["textures"] = [{"source": i, "sampler": 0} for i in range(2)]
+    g.doc["materials"] = [
+        {"name": "uv1-base", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}, "metallicFactor": 0,
+                                                      "roughnessFactor": 0.5}},
+        {"name": "uv1-specular", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.1, 0.1, 1], "metallicFactor": 0,
+                                                          "roughnessFactor": 0.5},
+         "extensions": {"KHR_materials_specular": {"specularTexture": {"index": 1, "texCoord": 1}}}},
+    ]
+    uv0 = [1, 0, 0, 0, 0, 1, 1, 1]  # mirrored
+    uv1 = [0, 0, 65535, 0, 65535, 65535, 0, 65535]
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uv0, FLOAT, "VEC2"),
+                 "TEXCOORD_1": g.accessor(uv1, USHORT, "VEC2", normalized=True)}
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    g.write_gltf(out / "texcoord1.gltf")
+
+
 def blob(rings=10, segments=16):
     """A unit-radius-0.5 sphere with a lump towards +x (so a mirror shows): vertices and per-vertex
     NORMALs (the sphere's: the shading normals need not be the lump's), counter-clockwise outside."""
@@ -716,7 +829,7 @@ def main():
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
     for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture,
-                  emissive_spot, instances):
+                  emissive_spot, instances, specular_textures, transmission_textures, texcoord1):
         write(out)
 
 

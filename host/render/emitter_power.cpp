@@ -32,6 +32,7 @@ EmissionEstimator::EmissionEstimator(const Scene& scene) : scene_(scene) {
         mt.rs = glm::vec4(std::bit_cast<float>(rec[0].x), std::bit_cast<float>(rec[0].y), std::bit_cast<float>(rec[0].z),
                           std::bit_cast<float>(rec[0].w));
         mt.offset = glm::vec2(std::bit_cast<float>(rec[1].x), std::bit_cast<float>(rec[1].y));
+        mt.texCoord = rec[1].w;
         for (int c = 0; c < 3; ++c)
             if (mt.emit[c] > 0.0f) mt.emitMask |= 0xffu << (8 * c);
         const std::size_t n = std::size_t(mt.header.y) * mt.header.z;
@@ -52,9 +53,12 @@ double EmissionEstimator::meanLuminance(std::uint32_t shape) const {
     if (!(mt.emit.x > 0.0f || mt.emit.y > 0.0f || mt.emit.z > 0.0f)) return 0.0;
     // Where lib/surface.glsl applies the texture: triangles whose attribute record has UVs
     // (packVertexAttributes: the flag and a non-empty UV array); elsewhere emit alone.
+    // (The loader refuses a texture on TEXCOORD_1 for a primitive without it.)
+    const bool one = mt.texCoord == 1;
     const bool hasUv = s.type == ShapeType::Triangle && s.attributes != Shape::kNoAttributes &&
-                       (scene_.triangleVertices.at(s.attributes).flags & TriangleVertices::kHasUv) != 0u &&
-                       !scene_.vertices.uv.empty();
+                       (scene_.triangleVertices.at(s.attributes).flags &
+                        (one ? TriangleVertices::kHasUv1 : TriangleVertices::kHasUv)) != 0u &&
+                       !(one ? scene_.vertices.uv1 : scene_.vertices.uv).empty();
     if (!mt.textured || !hasUv) return luminance709(mt.emit.x, mt.emit.y, mt.emit.z);
     HostTexelsScope texels(pack_.texels);
     return texturedMean(s, mt);
@@ -62,7 +66,8 @@ double EmissionEstimator::meanLuminance(std::uint32_t shape) const {
 
 double EmissionEstimator::texturedMean(const Shape& s, const MaterialTexture& mt) const {
     const TriangleVertices& tv = scene_.triangleVertices.at(s.attributes);
-    const glm::vec2 uv[3] = {scene_.vertices.uv.at(tv.v[0]), scene_.vertices.uv.at(tv.v[1]), scene_.vertices.uv.at(tv.v[2])};
+    const std::vector<glm::vec2>& set = mt.texCoord == 1 ? scene_.vertices.uv1 : scene_.vertices.uv;
+    const glm::vec2 uv[3] = {set.at(tv.v[0]), set.at(tv.v[1]), set.at(tv.v[2])};
     glm::vec2 t[3];
     for (int k = 0; k < 3; ++k) t[k] = gpu::texTransform(uv[k], mt.rs, mt.offset);
     const double w = mt.header.y, h = mt.header.z;

@@ -47,6 +47,7 @@ public:
         glm::uvec4 header{0};       ///< texture header (shared/texture_sample.h)
         glm::vec4 rs{1, 0, 0, 1};   ///< KHR_texture_transform rotation x scale, as packed
         glm::vec2 offset{0.0f};     ///< KHR_texture_transform offset, as packed
+        std::uint32_t texCoord = 0; ///< the UV set it reads: 0 (TEXCOORD_0) or 1 (TEXCOORD_1)
         std::uint32_t emitMask = 0; ///< bytes of a packed texel in channels where emit > 0
         double imageMean = 0.0;     ///< luminance of emit x the image's mean texel (the floor's scale)
         bool anyTexel = false;      ///< some texel emits (through emitMask)

@@ -67,7 +67,7 @@ std::vector<std::uint32_t> Features::specConstants() const {
             vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling != LightSampling::Area,
             instances, workgroupX, workgroupY,
             std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f),
-            triangleLights};
+            triangleLights, extensionTextures, texCoord1};
 }
 
 std::string Features::name() const {
@@ -107,6 +107,8 @@ std::string Features::name() const {
     if (environment) out += environmentMap ? " env:map" : " env:constant";
     if (vertexAttributes) out += " vertex-attributes";
     if (textures) out += " textures";
+    if (extensionTextures) out += " extension-textures";
+    if (texCoord1) out += " texcoord1";
     if (alpha) out += " alpha";
     if (instances) out += " instances";
     return out;
@@ -118,7 +120,7 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     if (full) {
         f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
         f.sphereLights = f.quadLights = f.triangleLights = f.defocus = f.environment = f.environmentMap = true;
-        f.vertexAttributes = f.textures = f.alpha = f.instances = true;
+        f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -139,12 +141,19 @@ Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
         f.metal |= m.type == MaterialType::Metal;
         f.dielectric |= m.type == MaterialType::Dielectric;
         f.pbr |= m.type == MaterialType::Pbr;
+        if (transmissionTextured(m)) {  // glass (or metal) where its texture says so
+            const Material t = transmittedMaterial(m);
+            f.dielectric |= t.type == MaterialType::Dielectric;
+            f.metal |= t.type == MaterialType::Metal;
+        }
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;
     f.environment = hasEnvironmentLight(scene);
     f.environmentMap = scene.environment.hasMap();
     f.textures = sceneHasTextures(scene);
+    f.extensionTextures = sceneHasExtensionTextures(scene);
+    f.texCoord1 = f.textures && sceneHasTexCoord1(scene);
     f.alpha = sceneHasAlpha(scene);
     f.vertexAttributes = f.textures || f.alpha || sceneHasVertexAttributes(scene);  // textures need the UVs
     return f;

@@ -56,6 +56,8 @@ struct Features {
     bool environmentMap = false;  ///< ... from a map (else constant)
     bool vertexAttributes = false;  ///< mesh triangles shade with UVs / interpolated normals (render/texture_pack.h)
     bool textures = false;          ///< some material reads a texture
+    bool texCoord1 = false;         ///< ... a texture through TEXCOORD_1 (lib/surface.glsl)
+    bool extensionTextures = false;  ///< ... a KHR_materials_specular or _transmission texture (lib/surface.glsl)
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     bool instances = false;         ///< two-level BVH: the scene has instanced meshes (shared/instance.h)
     Sampler sampler = Sampler::Mis;
@@ -64,9 +66,10 @@ struct Features {
     float solidAngleMinSize = kSolidAngleMinSize;  ///< for LightSampling::Auto (`--solid-angle-min`)
     std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..22, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
+    /// Values for constant_id 0..24, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
     /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size,
-    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits; 22: HAS_TRIANGLE_LIGHTS).
+    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits; 22: HAS_TRIANGLE_LIGHTS;
+    /// 23: HAS_EXTENSION_TEXTURES, 24: HAS_TEXCOORD1, lib/surface.glsl).
     std::vector<std::uint32_t> specConstants() const;
     /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
     std::string name() const;

@@ -4,6 +4,7 @@
 
 #include "shared/gpu_types.h"
 #include "shared/instance.h"
+#include "shared/texture_record.h"
 
 namespace vkp::gpu {
 
@@ -18,5 +19,11 @@ static_assert(sizeof(GpuInstance) == GPU_INSTANCE_TEXELS * 16, "GpuInstance: GPU
 static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) == 4 * 16 && offsetof(GpuInstance, o2w2) == 6 * 16,
               "GpuInstance texel order: info, world-to-object rows, object-to-world rows");
 static_assert(sizeof(GpuPush) == 2 * 16 && offsetof(GpuPush, adaptive) == 16, "GpuPush: two uvec4 (push constants)");
+
+static_assert(MAT_TEX_TEXELS == 2 * TEX_SLOTS + 1 && MAT_TEX_ALPHA_TEXEL == 2 * TEX_SLOTS,
+              "texture record: two texels per slot, then the alpha texel");
+static_assert(TEX_SLOT_BASE_COLOR == 0 && TEX_SLOT_METALLIC_ROUGHNESS == 1 && TEX_SLOT_NORMAL == 2 && TEX_SLOT_EMISSIVE == 3 &&
+                  TEX_SLOT_SPECULAR == 4 && TEX_SLOT_SPECULAR_COLOR == 5 && TEX_SLOT_TRANSMISSION == 6 && TEX_SLOTS == 7,
+              "texture record: slot order (host/render/texture_pack.cpp packs them in this order)");
 
 }  // namespace vkp::gpu

@@ -84,7 +84,8 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
         if (m.type == MaterialType::Pbr) {
             g.m0 = v4(glm::vec3(m.pbr.baseColor), bitsf(flags));
             g.m2 = v4(m.pbr.specularColor, m.pbr.specular);
-            g.m3 = glm::vec4(m.pbr.metallic, m.pbr.roughness, 0.0f, 0.0f);
+            // z: transmissionFactor where a texture decides per hit (transmissionTextured), else 0.
+            g.m3 = glm::vec4(m.pbr.metallic, m.pbr.roughness, transmissionTextured(m) ? m.pbr.transmission : 0.0f, m.ior);
         }
         out.push_back(g);
     }

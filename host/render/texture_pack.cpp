@@ -19,11 +19,12 @@ std::uint32_t wrapFlag(TextureWrap w) {
     }
 }
 
-/// The two texels of one texture slot: (rotation x scale) and (offset, header index or kNoTexture).
+/// The two texels of one texture slot: (rotation x scale) and (offset, header index or kNoTexture, UV set).
 void packSlot(const TextureRef& r, glm::uvec4* out) {
     const float c = std::cos(r.rotation), s = std::sin(r.rotation);
     out[0] = glm::uvec4(bits(c * r.scale.x), bits(s * r.scale.y), bits(-s * r.scale.x), bits(c * r.scale.y));
-    out[1] = glm::uvec4(bits(r.offset.x), bits(r.offset.y), r.valid() ? std::uint32_t(r.texture) : kNoTexture, 0u);
+    out[1] = glm::uvec4(bits(r.offset.x), bits(r.offset.y), r.valid() ? std::uint32_t(r.texture) : kNoTexture,
+                        r.valid() ? r.texCoord : 0u);
 }
 
 /// The emissive texture the kernel applies to `original` (a glTF emitter becomes a diffuse_light).
@@ -36,7 +37,8 @@ TextureRef emissiveTextureOf(const Material& original) {
 bool materialReadsTextures(const Material& original) {
     const Material m = kernelMaterial(original);
     if (m.type == MaterialType::Pbr)
-        return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid();
+        return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid() ||
+               m.pbr.specularTexture.valid() || m.pbr.specularColorTexture.valid() || transmissionTextured(m);
     return emissiveTextureOf(original).valid();
 }
 
@@ -51,6 +53,34 @@ bool sceneHasTextures(const Scene& scene) {
     const std::vector<bool> used = usedMaterials(scene);
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
         if (used[i] && materialReadsTextures(scene.materials[i])) return true;
+    return false;
+}
+
+bool sceneHasExtensionTextures(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material m = kernelMaterial(scene.materials[i]);
+        if (m.type == MaterialType::Pbr &&
+            (m.pbr.specularTexture.valid() || m.pbr.specularColorTexture.valid() || transmissionTextured(m)))
+            return true;
+    }
+    return false;
+}
+
+bool sceneHasTexCoord1(const Scene& scene) {
+    const std::vector<bool> used = usedMaterials(scene);
+    auto one = [](const TextureRef& r) { return r.valid() && r.texCoord == 1; };
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material m = kernelMaterial(scene.materials[i]);  // the slots packTextures fills
+        if (one(emissiveTextureOf(scene.materials[i]))) return true;
+        if (m.type != MaterialType::Pbr) continue;
+        const PbrParams& p = m.pbr;
+        if (one(p.baseColorTexture) || one(p.metallicRoughnessTexture) || one(p.normalTexture) || one(p.specularTexture) ||
+            one(p.specularColorTexture) || (transmissionTextured(m) && one(p.transmissionTexture)))
+            return true;
+    }
     return false;
 }
 
@@ -92,7 +122,10 @@ TexturePack packTextures(const Scene& scene) {
         packSlot(pbr ? m.pbr.metallicRoughnessTexture : none, rec + 2 * kTexSlotMetallicRoughness);
         packSlot(pbr ? m.pbr.normalTexture : none, rec + 2 * kTexSlotNormal);
         packSlot(emissiveTextureOf(scene.materials[i]), rec + 2 * kTexSlotEmissive);
-        rec[2 * kTexSlots] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
+        packSlot(pbr ? m.pbr.specularTexture : none, rec + 2 * kTexSlotSpecular);
+        packSlot(pbr ? m.pbr.specularColorTexture : none, rec + 2 * kTexSlotSpecularColor);
+        packSlot(transmissionTextured(m) ? m.pbr.transmissionTexture : none, rec + 2 * kTexSlotTransmission);
+        rec[gpu::MAT_TEX_ALPHA_TEXEL] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
                                         bits(m.pbr.baseColor.w));
     }
     std::vector<std::uint32_t> imageStart(scene.images.size(), 0);
@@ -139,6 +172,7 @@ std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::
 
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh) {
     std::vector<glm::uvec4> out(std::max<std::size_t>(bvh.primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
+    std::vector<glm::uvec4> uv1Records;  // appended after the primitive records
     const MeshVertices& mv = scene.vertices;
     for (std::size_t i = 0; i < bvh.primToShape.size(); ++i) {
         const Shape* sp = primShape(scene, bvh, i);
@@ -151,7 +185,14 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& 
         if ((tv.flags & TriangleVertices::kHasUv) && !mv.uv.empty())
             for (int k = 0; k < 3; ++k) uv[k] = mv.uv.at(tv.v[k]);
         rec[0] = glm::uvec4(bits(uv[0].x), bits(uv[0].y), bits(uv[1].x), bits(uv[1].y));
-        rec[1] = glm::uvec4(bits(uv[2].x), bits(uv[2].y), tv.flags, 0u);
+        std::uint32_t uv1At = 0;  // 0: no TEXCOORD_1 (the first record starts at 8 or later)
+        if ((tv.flags & TriangleVertices::kHasUv1) && !mv.uv1.empty()) {
+            const glm::vec2 a = mv.uv1.at(tv.v[0]), b = mv.uv1.at(tv.v[1]), c = mv.uv1.at(tv.v[2]);
+            uv1At = std::uint32_t(out.size() + uv1Records.size());
+            uv1Records.emplace_back(bits(a.x), bits(a.y), bits(b.x), bits(b.y));
+            uv1Records.emplace_back(bits(c.x), bits(c.y), 0u, 0u);
+        }
+        rec[1] = glm::uvec4(bits(uv[2].x), bits(uv[2].y), tv.flags, uv1At);
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 n = (tv.flags & TriangleVertices::kHasNormal) ? mv.normal.at(tv.v[k]) : glm::vec3(0.0f);
             rec[2 + k] = glm::uvec4(bits(n.x), bits(n.y), bits(n.z), 0u);
@@ -160,6 +201,7 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& 
             rec[5 + k] = glm::uvec4(bits(t.x), bits(t.y), bits(t.z), bits(t.w));
         }
     }
+    out.insert(out.end(), uv1Records.begin(), uv1Records.end());
     return out;
 }
 

@@ -9,18 +9,24 @@
 
 #include "bvh/flatten.h"
 #include "scene/scene.h"
+#include "shared/texture_record.h"
 
 namespace vkp {
 
-/// Texture slots of a material record, in this order (shaders/lib/surface.glsl SLOT_*).
-inline constexpr std::uint32_t kTexSlotBaseColor = 0, kTexSlotMetallicRoughness = 1, kTexSlotNormal = 2,
-                               kTexSlotEmissive = 3, kTexSlots = 4;
+/// Texture slots of a material record, in this order (layout: shaders/shared/texture_record.h).
+inline constexpr std::uint32_t kTexSlotBaseColor = gpu::TEX_SLOT_BASE_COLOR,
+                               kTexSlotMetallicRoughness = gpu::TEX_SLOT_METALLIC_ROUGHNESS,
+                               kTexSlotNormal = gpu::TEX_SLOT_NORMAL, kTexSlotEmissive = gpu::TEX_SLOT_EMISSIVE,
+                               kTexSlotSpecular = gpu::TEX_SLOT_SPECULAR,
+                               kTexSlotSpecularColor = gpu::TEX_SLOT_SPECULAR_COLOR,
+                               kTexSlotTransmission = gpu::TEX_SLOT_TRANSMISSION, kTexSlots = gpu::TEX_SLOTS;
 /// Texels of one material record: two per slot (transform; offset + header index) and one more
 /// (alpha mode, alpha cutoff, normal scale, base colour alpha).
-inline constexpr std::uint32_t kMatTexTexels = 2 * kTexSlots + 1;
-/// Texels of one primitive's vertex-attribute record: uv0 uv1 | uv2 flags | n0 | n1 | n2 | t0 | t1 | t2.
+inline constexpr std::uint32_t kMatTexTexels = gpu::MAT_TEX_TEXELS;
+/// Texels of one primitive's vertex-attribute record: uv0 uv1 | uv2 flags uv1At | n0 | n1 | n2 | t0 | t1 |
+/// t2 (uv0..2: TEXCOORD_0 of the corners; uv1At: first texel of its TEXCOORD_1 record, 0: none).
 inline constexpr std::uint32_t kAttributeTexels = 8;
-inline constexpr std::uint32_t kNoTexture = 0xffffffffu;
+inline constexpr std::uint32_t kNoTexture = gpu::TEX_NO_TEXTURE;
 
 struct TexturePack {
     /// RGBA32UI: [0] = (first texture header, material count, texture count, 0); material m's record
@@ -35,7 +41,8 @@ TexturePack packTextures(const Scene& scene);
 
 /// One kAttributeTexels record per BVH primitive (bvh.prims order, primShape): UVs, shading normals
 /// and tangents of mesh triangles (object space for an instanced mesh's); zeros (flags 0: no
-/// attributes) for every other primitive.
+/// attributes) for every other primitive. After them, a two-texel TEXCOORD_1 record, (c0, c1) |
+/// (c2, 0, 0), per triangle that has TEXCOORD_1 (only scenes that have it pay for it).
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh);
 
 /// Empty if the packed textures (pack) and vertex-attribute records (attributeTexels texels) fit
@@ -45,6 +52,13 @@ std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::
 
 /// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).
 bool sceneHasTextures(const Scene& scene);
+/// True if some kernel material of a shape reads a KHR_materials_specular texture
+/// (specularTexture, specularColorTexture) or a transmissionTexture that decides per hit
+/// (transmissionTextured): HAS_EXTENSION_TEXTURES, constant_id 23.
+bool sceneHasExtensionTextures(const Scene& scene);
+/// True if some texture slot the kernel reads (packTextures) of a shape's material uses TEXCOORD_1
+/// (HAS_TEXCOORD1, constant_id 24).
+bool sceneHasTexCoord1(const Scene& scene);
 /// True if some kernel material of a shape has alphaMode MASK or BLEND (HAS_ALPHA).
 bool sceneHasAlpha(const Scene& scene);
 /// True if some mesh triangle with a MAT_PBR kernel material has NORMAL or TEXCOORD_0

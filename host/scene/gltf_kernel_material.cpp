@@ -18,24 +18,47 @@ Material kernelMaterial(const Material& m) {
         k.twoSided = m.twoSided;
         return k;
     }
-    const glm::vec3 base(m.pbr.baseColor);
-    if (m.pbr.transmission > 0.0f && m.ior >= 1.0f) {
+    if (m.pbr.transmission > 0.0f && !transmissionTextured(m)) return transmittedMaterial(m);
+    // Opaque (or transmitting where a transmissionTexture says so, decided per hit): the glTF BRDF
+    // itself (Lambertian base + GGX specular, blended by metallic).
+    k = m;
+    k.albedo = glm::vec3(m.pbr.baseColor);
+    return k;
+}
+
+const char* texCoord1Slot(const Material& m) {
+    if (m.type != MaterialType::Pbr) return nullptr;
+    const PbrParams& p = m.pbr;
+    const std::pair<const TextureRef*, const char*> slots[] = {
+        {&p.baseColorTexture, "baseColorTexture"}, {&p.metallicRoughnessTexture, "metallicRoughnessTexture"},
+        {&p.normalTexture, "normalTexture"},       {&p.emissiveTexture, "emissiveTexture"},
+        {&p.specularTexture, "specularTexture"},   {&p.specularColorTexture, "specularColorTexture"},
+        {&p.transmissionTexture, "transmissionTexture"}};
+    for (const auto& [ref, name] : slots)
+        if (ref->valid() && ref->texCoord == 1) return name;
+    return nullptr;
+}
+
+bool transmissionTextured(const Material& m) {
+    return m.type == MaterialType::Pbr && !m.emits() && m.pbr.transmission > 0.0f && m.pbr.transmissionTexture.valid();
+}
+
+Material transmittedMaterial(const Material& m) {
+    Material k;
+    k.name = m.name;
+    if (m.ior >= 1.0f) {
         // Transmission (any amount) becomes smooth clear glass with the exact Fresnel equations:
         // tint, roughness and partial transmission are dropped.
         k.type = MaterialType::Dielectric;
         k.albedo = glm::vec3(1.0f);
         k.ior = m.ior;
         k.fresnelExact = true;
-    } else if (m.pbr.transmission > 0.0f && m.ior == 0.0f) {
-        // Transmission with KHR_materials_ior 0 (no refraction defined): the book's fuzzy metal,
-        // F0 = base colour, fuzz = GGX alpha = roughness^2.
-        k.type = MaterialType::Metal;
-        k.albedo = base;
-        k.fuzz = m.pbr.roughness * m.pbr.roughness;
     } else {
-        // Opaque: the glTF BRDF itself (Lambertian base + GGX specular, blended by metallic).
-        k = m;
-        k.albedo = base;
+        // KHR_materials_ior 0 (no refraction defined): the book's fuzzy metal, F0 = base colour,
+        // fuzz = GGX alpha = roughness^2.
+        k.type = MaterialType::Metal;
+        k.albedo = glm::vec3(m.pbr.baseColor);
+        k.fuzz = m.pbr.roughness * m.pbr.roughness;
     }
     return k;
 }

@@ -174,9 +174,11 @@ TextureRef MaterialMapper::textureRef(int index, int texCoord, const tinygltf::E
         r.scale = factor<2>(numbers(tt, "scale", {1.0, 1.0}, doc_.file, tp), -kInf, kInf, doc_.file, tp + "/scale");
         r.texCoord = std::uint32_t(number(tt, "texCoord", double(r.texCoord), 0, 255, doc_.file, tp));
     }
-    if (r.texCoord != 0) {
-        scene_.warnings.push_back(line(doc_.file, place, "uses TEXCOORD_" + std::to_string(r.texCoord) +
-                                                             ": vkpath reads TEXCOORD_0 only and uses it instead"));
+    if (r.texCoord > 1) {  // glTF 2.0 textureInfo.texCoord: the attribute TEXCOORD_<texCoord>
+        scene_.warnings.push_back(line(doc_.file, place, "texture " + std::to_string(index) + " uses TEXCOORD_" +
+                                                             std::to_string(r.texCoord) +
+                                                             ": vkpath reads TEXCOORD_0 and TEXCOORD_1 only and uses TEXCOORD_0 instead"));
+        r.texCoord = 0;
     }
     return r;
 }

@@ -197,7 +197,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
 
     MeshVertices& mv = scene.vertices;
     const std::size_t base = mv.size();
-    const std::size_t mark[3] = {mv.normal.size(), mv.uv.size(), mv.tangent.size()};
+    const std::size_t mark[4] = {mv.normal.size(), mv.uv.size(), mv.tangent.size(), mv.uv1.size()};
     std::uint32_t flags = 0;
     // NORMAL: by the inverse transpose, unit length (zero where degenerate, or absent: flat).
     {
@@ -219,6 +219,26 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
             for (std::size_t i = 0; i < nv; ++i) mv.uv.emplace_back(uvs[2 * i], uvs[2 * i + 1]);
         } else if (!mv.uv.empty()) {
             mv.uv.resize(base + nv, glm::vec2(0.0f));
+        }
+    }
+    {  // TEXCOORD_1, read as TEXCOORD_0 (float, or normalized unsigned byte / short; glTF 2.0 sec. 3.7.2.1;
+       // byte and short: KHR_mesh_quantization)
+        const std::vector<float> uvs = readAttribute(doc, p, "TEXCOORD_1", where, 2, {kFloat, kByte, kUByte, kShort, kUShort}, nv);
+        if (!uvs.empty()) {
+            flags |= TriangleVertices::kHasUv1;
+            mv.uv1.resize(base, glm::vec2(0.0f));
+            for (std::size_t i = 0; i < nv; ++i) mv.uv1.emplace_back(uvs[2 * i], uvs[2 * i + 1]);
+        } else if (!mv.uv1.empty()) {
+            mv.uv1.resize(base + nv, glm::vec2(0.0f));
+        }
+        // glTF 2.0 textureInfo.texCoord: "A mesh primitive MUST have the corresponding texture coordinate
+        // attributes for the material to be applicable to it."
+        if (uvs.empty()) {
+            const Material& m = scene.materials.at(material);
+            if (const char* slot = texCoord1Slot(m)) {
+                fail(doc.file, where, "has no TEXCOORD_1, but its material \"" + m.name + "\" reads it (" + slot +
+                                          ".texCoord 1)");
+            }
         }
     }
     const bool normalMapped = scene.materials.at(material).type == MaterialType::Pbr &&
@@ -249,6 +269,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
         mv.normal.resize(mark[0]);
         mv.uv.resize(mark[1]);
         mv.tangent.resize(mark[2]);
+        mv.uv1.resize(mark[3]);
         return;
     }
 

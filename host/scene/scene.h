@@ -21,7 +21,7 @@ enum class MaterialType : std::uint32_t { Lambertian = 0, Metal = 1, Dielectric 
 /// KHR_texture_transform of the lookup (identity when absent).
 struct TextureRef {
     std::int32_t texture = -1;    ///< index into Scene::textures; -1: no texture (use the factor alone)
-    std::uint32_t texCoord = 0;   ///< the file's UV set; only TEXCOORD_0 is stored (the loader warns about others)
+    std::uint32_t texCoord = 0;   ///< the UV set: 0 (TEXCOORD_0) or 1 (TEXCOORD_1); the loader warns about others and uses 0
     glm::vec2 offset{0.0f};       ///< KHR_texture_transform offset (UV units)
     float rotation = 0.0f;        ///< KHR_texture_transform rotation, radians, counter-clockwise in UV space
     glm::vec2 scale{1.0f};        ///< KHR_texture_transform scale
@@ -98,6 +98,7 @@ struct TriangleVertices {
     static constexpr std::uint32_t kHasNormal = 1;   ///< else shade with the geometric (flat) normal
     static constexpr std::uint32_t kHasUv = 2;       ///< else UV = (0,0)
     static constexpr std::uint32_t kHasTangent = 4;  ///< from the file, or generated for a normal map
+    static constexpr std::uint32_t kHasUv1 = 8;      ///< TEXCOORD_1 (else none: no texture may use it)
 };
 
 /// Per-vertex shading attributes of mesh triangles, in world space, structure of arrays. normal
@@ -106,6 +107,7 @@ struct TriangleVertices {
 struct MeshVertices {
     std::vector<glm::vec3> normal;   ///< unit length (zero where the primitive had no NORMAL)
     std::vector<glm::vec2> uv;       ///< TEXCOORD_0 (glTF convention: v down, (0,0) = top left of the image)
+    std::vector<glm::vec2> uv1;      ///< TEXCOORD_1 (as uv: empty, or as long as normal)
     std::vector<glm::vec4> tangent;  ///< xyz unit tangent, w = +-1: bitangent = w * cross(normal, tangent.xyz)
     std::size_t size() const { return normal.size(); }
 };
@@ -219,6 +221,20 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
 /// transmitting one (exact-Fresnel glass); see host/scene/gltf_kernel_material.cpp. Used by the
 /// GPU packing and should be used by anything that chooses kernel features from material types.
 Material kernelMaterial(const Material& m);
+
+/// The name of a texture slot of Pbr material m that reads TEXCOORD_1 ("baseColorTexture", ...),
+/// or null if none does.
+const char* texCoord1Slot(const Material& m);
+
+/// True for a non-emitting Pbr material with transmissionFactor > 0 and a transmissionTexture:
+/// the kernel renders it as the glTF BRDF (kernelMaterial) where factor x texture R is 0 and as
+/// transmittedMaterial(m) where it is above 0, deciding per hit (lib/surface.glsl).
+bool transmissionTextured(const Material& m);
+
+/// What a transmitting Pbr material renders as (transmission > 0, whatever the amount): exact-
+/// Fresnel clear glass of index m.ior, or with KHR_materials_ior 0 the book's fuzzy metal (F0 =
+/// base colour, fuzz = roughness^2).
+Material transmittedMaterial(const Material& m);
 
 /// Calls f(shape) for every shape the scene draws: Scene::shapes (world space) and the triangles of
 /// every instanced mesh (object space, once per mesh). For what depends on kinds and materials only.

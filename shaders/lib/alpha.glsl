@@ -39,17 +39,17 @@ float alphaHash(uint prim, vec3 o, vec3 d) {
 bool alphaAccept(uint primIndex, GpuPrim p, vec2 ab, vec3 o, vec3 d) {
     if (!HAS_ALPHA || primKind(p) != PRIM_TRIANGLE) return true;
     uint rec = 1u + MAT_TEX_TEXELS * primMaterial(p);
-    uvec4 a = texelFetch(uTexInfo, int(rec + 2u * 4u));  // (mode, cutoff, normal scale, alpha factor)
+    uvec4 a = texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL));  // (mode, cutoff, normal scale, alpha factor)
     if (a.x == ALPHA_OPAQUE) return true;
     float alpha = uintBitsToFloat(a.w);
     if (HAS_TEXTURES) {
         int base = int(primIndex * ATTR_TEXELS);
         vec4 a0 = fetchF(uAttributes, base);
         vec4 a1 = fetchF(uAttributes, base + 1);
-        if ((floatBitsToUint(a1.z) & ATTR_HAS_UV) != 0u) {
+        if ((floatBitsToUint(a1.z) & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
             vec2 uv = (1.0f - ab.x - ab.y) * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
             vec4 c;
-            if (sampleSlot(rec, SLOT_BASE_COLOR, uv, c)) alpha *= c.w;
+            if (sampleSlot(rec, TEX_SLOT_BASE_COLOR, uv, attributeUv1(a1, ab, uv), c)) alpha *= c.w;
         }
     }
     if (a.x == ALPHA_MASK) return alpha >= uintBitsToFloat(a.y);

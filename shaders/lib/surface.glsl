@@ -1,14 +1,16 @@
-// Surface attributes of glTF mesh triangles at a hit: UV (TEXCOORD_0), interpolated shading normal,
+// Surface attributes of glTF mesh triangles at a hit: UVs (TEXCOORD_0, _1), interpolated shading normal,
 // normal map, and the textures of MAT_PBR materials. Compiled in only for scenes that need it
 // (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES; host/render/features.cpp). Included by pathtrace.comp.
 //
 // Buffers (host/render/texture_pack.h; binding numbers must match host/render/renderer.cpp):
-//   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, 0) | n0 | n1 | n2 |
-//                           t0 | t1 | t2 (flags: TriangleVertices::kHas*; zeros for other primitives);
-//   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at 1 + 9 m: per
-//                           slot (SLOT_*) the transform (rotation x scale) and (offset, header index
-//                           or 0xffffffff, 0), then (alpha mode, cutoff, normal scale, alpha factor);
-//                           texture headers as in shared/texture_sample.h;
+//   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, uv1At) | n0 | n1 |
+//                           n2 | t0 | t1 | t2 (TEXCOORD_0 of the corners; flags: TriangleVertices::
+//                           kHas*; zeros for other primitives); after all of them, for triangles
+//                           with TEXCOORD_1 (ATTR_HAS_UV1), its corners (c0, c1) | (c2, 0, 0) at
+//                           texel uv1At;
+//   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at
+//                           1 + MAT_TEX_TEXELS m (layout: shared/texture_record.h); texture headers
+//                           as in shared/texture_sample.h;
 //   uTexels     (R32UI):    RGBA8 texels of every image.
 //
 // Shading normals: the interpolated NORMAL (and the normal map) only orient the BRDF's frame. They
@@ -23,6 +25,13 @@
 
 layout(constant_id = 13) const bool HAS_VERTEX_ATTRIBUTES = true;  // UVs and shading normals of mesh triangles
 layout(constant_id = 14) const bool HAS_TEXTURES = true;           // materials read textures
+// ... and some MAT_PBR material reads a KHR_materials_specular texture (specularTexture,
+// specularColorTexture) or a KHR_materials_transmission transmissionTexture: their three lookups
+// run at every PBR hit of a variant that has them.
+layout(constant_id = 23) const bool HAS_EXTENSION_TEXTURES = true;
+// ... and some texture slot reads TEXCOORD_1 (textureInfo.texCoord 1): its UVs are fetched at
+// every textured hit and each lookup picks its set.
+layout(constant_id = 24) const bool HAS_TEXCOORD1 = true;
 
 layout(set = 0, binding = 12) uniform usamplerBuffer uAttributes;
 layout(set = 0, binding = 13) uniform usamplerBuffer uTexInfo;
@@ -30,27 +39,58 @@ layout(set = 0, binding = 14) uniform usamplerBuffer uTexels;
 
 #define VKP_TEXEL_FETCH(i) texelFetch(uTexels, int(i)).x
 #include "shared/texture_sample.h"
+#include "shared/texture_record.h"
 
 const uint ATTR_TEXELS = 8u;
 const uint ATTR_HAS_NORMAL = 1u;  // TriangleVertices flags (host/scene/scene.h)
 const uint ATTR_HAS_UV = 2u;
 const uint ATTR_HAS_TANGENT = 4u;
-const uint MAT_TEX_TEXELS = 9u;
-const uint SLOT_BASE_COLOR = 0u;
-const uint SLOT_METALLIC_ROUGHNESS = 1u;
-const uint SLOT_NORMAL = 2u;
-const uint SLOT_EMISSIVE = 3u;
-const uint NO_TEXTURE = 0xffffffffu;
+const uint ATTR_HAS_UV1 = 8u;  // TEXCOORD_1: its 2-texel record at the texel in the record's second w
 
-/// Sample texture slot `slot` of the material record at `rec` at uv; false if the slot is empty.
-bool sampleSlot(uint rec, uint slot, vec2 uv, out vec4 c) {
+/// TEXCOORD_1 at surface parameters ab of the primitive whose attribute record's second texel is
+/// a1 (fallback where it has none, or in variants without HAS_TEXCOORD1).
+vec2 attributeUv1(vec4 a1, vec2 ab, vec2 fallback) {
+    if (!HAS_TEXCOORD1 || (floatBitsToUint(a1.z) & ATTR_HAS_UV1) == 0u) return fallback;
+    int at = int(floatBitsToUint(a1.w));
+    vec4 b0 = fetchF(uAttributes, at);
+    vec4 b1 = fetchF(uAttributes, at + 1);
+    return (1.0f - ab.x - ab.y) * b0.xy + ab.x * b0.zw + ab.y * b1.xy;
+}
+
+/// Sample texture slot `slot` of the material record at `rec` at uv0 (TEXCOORD_0) or uv1
+/// (TEXCOORD_1), as the slot's texCoord says; false if the slot is empty.
+bool sampleSlot(uint rec, uint slot, vec2 uv0, vec2 uv1, out vec4 c) {
     c = vec4(1.0f);
     uvec4 t1 = texelFetch(uTexInfo, int(rec + 2u * slot + 1u));
-    if (t1.z == NO_TEXTURE) return false;
+    if (t1.z == TEX_NO_TEXTURE) return false;
+    vec2 uv = (HAS_TEXCOORD1 && t1.w == 1u) ? uv1 : uv0;
     vec4 rs = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * slot)));
     uint headerBase = texelFetch(uTexInfo, 0).x;
     c = texSample(texelFetch(uTexInfo, int(headerBase + t1.z)), texTransform(uv, rs, uintBitsToFloat(t1.xy)));
     return true;
+}
+
+/// KHR_materials_transmission with a transmissionTexture (github.com/KhronosGroup/glTF,
+/// extensions/2.0/Khronos/KHR_materials_transmission): transmission = transmissionFactor (m3.z,
+/// non-zero only for such materials, shared/gpu_types.h) x the texture's R channel (linear) at uv.
+/// True where it is above 0: there the material renders as a constant transmissionFactor > 0 does
+/// (host transmittedMaterial: any amount is clear glass), elsewhere as the opaque glTF BRDF.
+bool transmitsAt(uint rec, vec2 uv, vec2 uv1, GpuMaterial m) {
+    vec4 c;
+    return m.m3.z > 0.0f && sampleSlot(rec, TEX_SLOT_TRANSMISSION, uv, uv1, c) && m.m3.z * c.x > 0.0f;
+}
+
+/// Turns the MAT_PBR record m into what host transmittedMaterial gives: exact-Fresnel clear glass
+/// of index m3.w, or with ior 0 a fuzzy metal (albedo = base colour factor, fuzz = roughness^2).
+void becomeTransmitted(inout GpuMaterial m) {
+    float ior = m.m3.w;
+    if (ior >= 1.0f) {
+        m.m0 = vec4(1.0f, 1.0f, 1.0f, uintBitsToFloat(MAT_DIELECTRIC | MATF_FRESNEL_EXACT));
+        m.m1.w = ior;
+    } else {
+        m.m0.w = uintBitsToFloat(MAT_METAL);
+        m.m1.w = m.m3.y * m.m3.y;
+    }
 }
 
 /// At a hit on primitive `prim` (p, surface parameters ab, geometric normal ns facing the incoming
@@ -87,46 +127,58 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         if (hasN) n = ni / len;  // the file's orientation (turned to the ray's side below)
     }
     uint mtype = floatBitsToUint(m.m0.w) & 15u;
-    if (HAS_TEXTURES && mtype == MAT_PBR && (flags & ATTR_HAS_UV) != 0u) {
+    if (HAS_TEXTURES && mtype == MAT_PBR && (flags & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
+        vec2 uv1 = attributeUv1(a1, ab, uv);
         uint rec = 1u + MAT_TEX_TEXELS * mi;
         vec4 c;
-        if (sampleSlot(rec, SLOT_BASE_COLOR, uv, c)) m.m0.xyz *= c.xyz;
-        if (sampleSlot(rec, SLOT_METALLIC_ROUGHNESS, uv, c)) {
-            m.m3.x *= c.z;  // metallic in B
-            m.m3.y *= c.y;  // roughness in G
-        }
-        if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, SLOT_NORMAL, uv, c)) {
-            // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
-            if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
-            vec4 t0 = fetchF(uAttributes, base + 5);
-            vec4 t1 = fetchF(uAttributes, base + 6);
-            vec4 t2 = fetchF(uAttributes, base + 7);
-            if (instanced) {
-                t0 = instanceTangentToWorld(ins, t0);
-                t1 = instanceTangentToWorld(ins, t1);
-                t2 = instanceTangentToWorld(ins, t2);
+        if (HAS_EXTENSION_TEXTURES && transmitsAt(rec, uv, uv1, m)) {
+            becomeTransmitted(m);  // what a constant transmissionFactor > 0 renders as: no other texture applies
+        } else {
+            if (sampleSlot(rec, TEX_SLOT_BASE_COLOR, uv, uv1, c)) m.m0.xyz *= c.xyz;
+            if (sampleSlot(rec, TEX_SLOT_METALLIC_ROUGHNESS, uv, uv1, c)) {
+                m.m3.x *= c.z;  // metallic in B
+                m.m3.y *= c.y;  // roughness in G
             }
-            vec4 t = w0 * t0 + ab.x * t1 + ab.y * t2;
-            vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
-            float tl = length(tt);
-            if (tl > 0.0f) {
-                tt /= tl;
-                vec3 bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
-                float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + 2u * 4u)).z);
-                vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
-                vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
-                float nl = length(nm);
-                if (nl > 0.0f) {
-                    n = nm / nl;
-                    hasN = true;
+            if (HAS_EXTENSION_TEXTURES) {
+                // KHR_materials_specular: specular = specularFactor x specularTexture.a (linear),
+                // specularColor = specularColorFactor x specularColorTexture.rgb (sRGB-decoded).
+                if (sampleSlot(rec, TEX_SLOT_SPECULAR, uv, uv1, c)) m.m2.w *= c.w;
+                if (sampleSlot(rec, TEX_SLOT_SPECULAR_COLOR, uv, uv1, c)) m.m2.xyz *= c.xyz;
+            }
+            if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, TEX_SLOT_NORMAL, uv, uv1, c)) {
+                // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
+                if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
+                vec4 t0 = fetchF(uAttributes, base + 5);
+                vec4 t1 = fetchF(uAttributes, base + 6);
+                vec4 t2 = fetchF(uAttributes, base + 7);
+                if (instanced) {
+                    t0 = instanceTangentToWorld(ins, t0);
+                    t1 = instanceTangentToWorld(ins, t1);
+                    t2 = instanceTangentToWorld(ins, t2);
+                }
+                vec4 t = w0 * t0 + ab.x * t1 + ab.y * t2;
+                vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
+                float tl = length(tt);
+                if (tl > 0.0f) {
+                    tt /= tl;
+                    vec3 bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
+                    float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL)).z);
+                    vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
+                    vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
+                    float nl = length(nm);
+                    if (nl > 0.0f) {
+                        n = nm / nl;
+                        hasN = true;
+                    }
                 }
             }
         }
     }
-    if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & ATTR_HAS_UV) != 0u) {
+    if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
         vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
-        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, SLOT_EMISSIVE, w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy, c)) m.m1.xyz *= c.xyz;
+        vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
+        if (sampleSlot(1u + MAT_TEX_TEXELS * mi, TEX_SLOT_EMISSIVE, uv, attributeUv1(a1, ab, uv), c)) m.m1.xyz *= c.xyz;
     }
     if (!hasN) return ns;
     if (dot(n, ns) < 0.0f) n = -n;              // the side the ray arrived on
@@ -152,9 +204,10 @@ void emissiveTextureAt(uint prim, GpuPrim p, vec3 x, inout GpuMaterial m) {
     int base = int(prim * ATTR_TEXELS);
     vec4 a0 = fetchF(uAttributes, base);
     vec4 a1 = fetchF(uAttributes, base + 1);
-    if ((floatBitsToUint(a1.z) & ATTR_HAS_UV) == 0u) return;
+    if ((floatBitsToUint(a1.z) & (ATTR_HAS_UV | ATTR_HAS_UV1)) == 0u) return;
     vec4 c;
-    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), SLOT_EMISSIVE, (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy, c))
+    vec2 uv = (1.0f - a - b) * a0.xy + a * a0.zw + b * a1.xy;
+    if (sampleSlot(1u + MAT_TEX_TEXELS * primMaterial(p), TEX_SLOT_EMISSIVE, uv, attributeUv1(a1, vec2(a, b), uv), c))
         m.m1.xyz *= c.xyz;
 }
 

@@ -56,7 +56,9 @@ const uint MATF_EMITS = 64u;          // emit != 0
 // m0.xyz: albedo (linear RGB; pbr: baseColorFactor), m0.w: bits of type | flags
 // m1.xyz: emitted radiance (linear RGB, W sr^-1 m^-2 in scene units), m1.w: fuzz (metal) or ior
 // m2 (pbr only): xyz = KHR_materials_specular specularColorFactor, w = specularFactor
-// m3 (pbr only): x = metallicFactor, y = roughnessFactor, zw = 0
+// m3 (pbr only): x = metallicFactor, y = roughnessFactor, z = KHR_materials_transmission
+//    transmissionFactor when a transmissionTexture decides per hit (host transmissionTextured),
+//    else 0; w = KHR_materials_ior ior
 // The kernel fetches m2 and m3 only in variants with HAS_PBR (shaders/lib/bindings.glsl).
 struct GpuMaterial {
     vec4 m0;

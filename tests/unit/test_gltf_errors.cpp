@@ -205,6 +205,28 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
              d["meshes"][0]["primitives"][0]["material"] = 0;
          },
          "material 0/pbrMetallicRoughness/baseColorTexture/index: texture 5 does not exist"},
+        {"texcoord1_without_attribute",
+         [](Json& d, Bytes&) {
+             d["images"] = Json::parse(R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAAC0lEQVR42mP4DwQACfsD/Wj6HMwAAAAASUVORK5CYII="}])");
+             d["textures"] = Json::parse(R"([{"source": 0}])");
+             d["materials"] = Json::parse(R"([{"name": "m", "normalTexture": {"index": 0, "texCoord": 1}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         kPrim + "has no TEXCOORD_1, but its material \"m\" reads it (normalTexture.texCoord 1)"},
+        {"texcoord1_accessor_missing", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 7; },
+         "accessor 7 (TEXCOORD_1 of mesh 0 (\"tri\") primitive 0): does not exist"},
+        {"specular_texture_missing",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_specular": {"specularColorTexture": {"index": 3}}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/extensions/KHR_materials_specular/specularColorTexture/index: texture 3 does not exist"},
+        {"transmission_texture_missing",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 2}}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/extensions/KHR_materials_transmission/transmissionTexture/index: texture 2 does not exist"},
         {"image_file_missing",
          [](Json& d, Bytes&) {
              d["images"] = Json::parse(R"([{"uri": "missing.png"}])");
@@ -266,6 +288,20 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
         SCOPED_TRACE(c.name);
         expectError(writeCase(c), c.fragment);
     }
+}
+
+TEST(GltfErrors, TexCoordAboveOneIsAWarningNamingMaterialAndTexture) {
+    const Scene s = loadSceneGltf(writeCase({"texcoord2", [](Json& d, Bytes&) {
+        d["images"] = Json::parse(R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAAC0lEQVR42mP4DwQACfsD/Wj6HMwAAAAASUVORK5CYII="}])");
+        d["textures"] = Json::parse(R"([{"source": 0}])");
+        d["materials"] = Json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 2}}}])");
+        d["meshes"][0]["primitives"][0]["material"] = 0;
+    }, ""}));
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("texcoord2.gltf: material 0 (\"m\")/pbrMetallicRoughness/baseColorTexture: texture 0 uses "
+                                 "TEXCOORD_2: vkpath reads TEXCOORD_0 and TEXCOORD_1 only and uses TEXCOORD_0 instead"),
+              std::string::npos) << s.warnings[0];
+    EXPECT_EQ(s.materials.at(0).pbr.baseColorTexture.texCoord, 0u);
 }
 
 TEST(GltfErrors, BrokenContainersAndFiles) {

@@ -180,6 +180,90 @@ TEST_F(Materials, TransmissionIorSpecularAlphaAndDefault) {
     EXPECT_EQ(kd.pbr.roughness, 1.0f);
 }
 
+// KHR_materials_specular textures (github.com/KhronosGroup/glTF, extensions/2.0/Khronos/
+// KHR_materials_specular/README.md): specularTexture is linear, its A channel scales
+// specularFactor; specularColorTexture is sRGB, its RGB scales specularColorFactor.
+TEST(GltfSpecularTextures, ReadWithTheirColourSpacesAndNoWarning) {
+    const Scene s = loadSceneGltf(gltfScene("specular-textures.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.materials.size(), 3u);
+    const Material& half = s.materials[0];
+    EXPECT_EQ(half.name, "specular-half");
+    EXPECT_EQ(half.pbr.specular, 1.0f);  // the default factor
+    ASSERT_TRUE(half.pbr.specularTexture.valid());
+    EXPECT_EQ(half.pbr.specularTexture.texCoord, 0u);
+    EXPECT_FALSE(half.pbr.specularColorTexture.valid());
+    const Texture& st = s.textures.at(std::size_t(half.pbr.specularTexture.texture));
+    EXPECT_FALSE(st.srgb);
+    EXPECT_TRUE(st.nearest);
+    EXPECT_EQ(st.wrapS, TextureWrap::ClampToEdge);
+    const TextureImage& a = s.images.at(st.image);  // alpha 0 | 255, RGB a decoy
+    EXPECT_EQ(pixel(a, 0, 0), glm::uvec4(255, 255, 255, 0));
+    EXPECT_EQ(pixel(a, 1, 0), glm::uvec4(0, 0, 0, 255));
+
+    const Material& color = s.materials[2];
+    EXPECT_EQ(color.name, "specular-color-half");
+    EXPECT_EQ(color.pbr.specularColor, glm::vec3(1.0f));
+    EXPECT_FALSE(color.pbr.specularTexture.valid());
+    ASSERT_TRUE(color.pbr.specularColorTexture.valid());
+    const Texture& ct = s.textures.at(std::size_t(color.pbr.specularColorTexture.texture));
+    EXPECT_TRUE(ct.srgb);
+    EXPECT_EQ(pixel(s.images.at(ct.image), 1, 0), glm::uvec4(0, 128, 255, 0));
+    for (const Material& m : s.materials) EXPECT_EQ(kernelMaterial(m).type, MaterialType::Pbr);
+}
+
+// KHR_materials_transmission transmissionTexture (github.com/KhronosGroup/glTF, extensions/2.0/
+// Khronos/KHR_materials_transmission/README.md): linear, its R channel scales transmissionFactor.
+TEST(GltfTransmissionTexture, ReadLinearAndDecidedPerHit) {
+    const Scene s = loadSceneGltf(gltfScene("transmission-textures.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.materials.size(), 2u);
+    const Material& half = s.materials[0];
+    EXPECT_EQ(half.pbr.transmission, 1.0f);
+    ASSERT_TRUE(half.pbr.transmissionTexture.valid());
+    EXPECT_EQ(half.pbr.transmissionTexture.texCoord, 0u);
+    const Texture& t = s.textures.at(std::size_t(half.pbr.transmissionTexture.texture));
+    EXPECT_FALSE(t.srgb);
+    EXPECT_EQ(pixel(s.images.at(t.image), 1, 0), glm::uvec4(255, 0, 0, 0));  // R 1, the rest decoys
+    // With a texture the kernel keeps the glTF BRDF and decides per hit; without, any factor > 0
+    // is glass, as before.
+    EXPECT_TRUE(transmissionTextured(half));
+    EXPECT_EQ(kernelMaterial(half).type, MaterialType::Pbr);
+    EXPECT_EQ(transmittedMaterial(half).type, MaterialType::Dielectric);
+    EXPECT_EQ(transmittedMaterial(half).ior, 1.5f);
+    Material plain = half;
+    plain.pbr.transmissionTexture = TextureRef{};
+    EXPECT_FALSE(transmissionTextured(plain));
+    EXPECT_EQ(kernelMaterial(plain).type, MaterialType::Dielectric);
+    plain.pbr.transmission = 0.0f;
+    plain.pbr.transmissionTexture = half.pbr.transmissionTexture;  // factor 0: the texture changes nothing
+    EXPECT_FALSE(transmissionTextured(plain));
+    EXPECT_EQ(kernelMaterial(plain).type, MaterialType::Pbr);
+}
+
+// textureInfo.texCoord 1: the texture reads TEXCOORD_1, which the loader stores (here normalized
+// uint16) beside TEXCOORD_0.
+TEST(GltfTexCoord1, ReadForEverySlotWithoutWarnings) {
+    const Scene s = loadSceneGltf(gltfScene("texcoord1.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.materials.size(), 2u);
+    EXPECT_EQ(s.materials[0].pbr.baseColorTexture.texCoord, 1u);
+    EXPECT_TRUE(s.textures.at(std::size_t(s.materials[0].pbr.baseColorTexture.texture)).srgb);
+    EXPECT_EQ(s.materials[1].pbr.specularTexture.texCoord, 1u);
+    EXPECT_FALSE(s.textures.at(std::size_t(s.materials[1].pbr.specularTexture.texture)).srgb);
+    EXPECT_STREQ(texCoord1Slot(s.materials[0]), "baseColorTexture");
+    EXPECT_STREQ(texCoord1Slot(s.materials[1]), "specularTexture");
+    ASSERT_EQ(s.vertices.uv1.size(), s.vertices.normal.size());
+    const TriangleVertices& tv = s.triangleVertices.at(s.shapes.at(0).attributes);
+    EXPECT_EQ(tv.flags & TriangleVertices::kHasUv1, TriangleVertices::kHasUv1);
+    // Quad corners top left, top right, bottom right, bottom left: TEXCOORD_1 (u, v), TEXCOORD_0 (1 - u, v).
+    const glm::vec2 uv1[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (std::uint32_t v = 0; v < 4; ++v) {
+        EXPECT_EQ(s.vertices.uv1.at(v), uv1[v]) << v;
+        EXPECT_EQ(s.vertices.uv.at(v), glm::vec2(1.0f - uv1[v].x, uv1[v].y)) << v;
+    }
+}
+
 TEST(GltfEmissive, GlbWithEmbeddedImageAndSingleAndDoubleSidedLights) {
     const Scene s = loadSceneGltf(gltfScene("emissive.glb"));
     EXPECT_TRUE(s.warnings.empty());

@@ -2,8 +2,10 @@
 // scenes/gltf/textures.gltf, and the refusal of a scene whose texels exceed the device's limit.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <string>
 
+#include "render/features.h"
 #include "render/texture_pack.h"
 #include "scene/gltf.h"
 #include "test_paths.h"
@@ -29,6 +31,29 @@ TEST(TexturePack, HeadersPointAtEachImagesTexels) {
         for (std::uint32_t i = 0; i < img.width * img.height; ++i)  // R in the low byte
             ASSERT_EQ(pack.texels[h.x + i] & 255u, img.rgba8[4 * i]) << "texture " << t << " texel " << i;
     }
+}
+
+TEST(TexturePack, SpecularTexturesFillTheirSlotsAndTheirVariant) {
+    const Scene scene = loadSceneGltf(test::scenesDir() / "gltf" / "specular-textures.gltf");
+    const TexturePack pack = packTextures(scene);
+    auto slot = [&](std::uint32_t m, std::uint32_t s) { return pack.info.at(1 + kMatTexTexels * m + 2 * s + 1).z; };
+    auto header = [&](std::int32_t t) { return std::uint32_t(t); };
+    EXPECT_EQ(slot(0, kTexSlotSpecular), header(scene.materials[0].pbr.specularTexture.texture));
+    EXPECT_EQ(slot(0, kTexSlotSpecularColor), kNoTexture);
+    EXPECT_EQ(slot(0, kTexSlotBaseColor), kNoTexture);
+    EXPECT_EQ(slot(2, kTexSlotSpecular), kNoTexture);
+    EXPECT_EQ(slot(2, kTexSlotSpecularColor), header(scene.materials[2].pbr.specularColorTexture.texture));
+    // The alpha texel follows the slots: (mode, cutoff, normal scale, alpha factor).
+    EXPECT_EQ(std::bit_cast<float>(pack.info.at(1 + kMatTexTexels * 2 + gpu::MAT_TEX_ALPHA_TEXEL).y), 0.5f);
+    EXPECT_TRUE(sceneHasTextures(scene));
+    EXPECT_TRUE(sceneHasExtensionTextures(scene));
+    EXPECT_FALSE(sceneHasExtensionTextures(texturesScene()));  // base colour, metallicRoughness, normal only
+    // The variant: constant_id 23 (HAS_EXTENSION_TEXTURES) on for this scene only.
+    const std::vector<std::uint32_t> on = sceneFeatures(scene, Sampler::Mis).specConstants();
+    ASSERT_EQ(on.size(), 25u);
+    EXPECT_EQ(on[23], 1u);
+    EXPECT_EQ(sceneFeatures(texturesScene(), Sampler::Mis).specConstants().at(23), 0u);
+    EXPECT_NE(sceneFeatures(scene, Sampler::Mis).name().find(" extension-textures"), std::string::npos);
 }
 
 TEST(TexturePack, RefusesTexelsBeyondTheDeviceLimit) {
