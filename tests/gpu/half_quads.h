@@ -8,6 +8,7 @@
 // the same pixels, so the viewing directions (which vary over the image) are the same in both.
 #pragma once
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,13 @@
 #include "test_paths.h"
 
 namespace vkp::test {
+
+/// The material of `s` called `name` (the reference scenes replace a texture by a constant in it).
+inline Material& namedMaterial(Scene& s, const std::string& name) {
+    for (Material& m : s.materials)
+        if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+}
 
 /// The scene: gltf file `file` of scenes/gltf/ with `quads` quads, rendered with `seed`.
 inline Scene halfQuadsScene(const std::string& file, int quads, std::uint32_t seed) {

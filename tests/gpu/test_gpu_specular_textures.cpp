@@ -32,23 +32,17 @@ namespace {
 constexpr int kQuads = 3;
 constexpr std::uint32_t kSpp = 64;
 
-Material& named(Scene& s, const std::string& name) {
-    for (Material& m : s.materials)
-        if (m.name == name) return m;
-    throw std::runtime_error("no material " + name);
-}
-
 /// The scene with every specular texture replaced by a constant: `right` picks the value of the
 /// halves' right texels (else the left's).
 Scene reference(std::uint32_t seed, bool right) {
     Scene s = halfQuadsScene("specular-textures.gltf", kQuads, seed);
-    Material& half = named(s, "specular-half");
+    Material& half = namedMaterial(s, "specular-half");
     half.pbr.specularTexture = TextureRef{};
     half.pbr.specular = right ? 1.0f : 0.0f;
-    Material& uniform = named(s, "specular-uniform");
+    Material& uniform = namedMaterial(s, "specular-uniform");
     uniform.pbr.specularTexture = TextureRef{};
     uniform.pbr.specular = 128.0f / 255.0f;
-    Material& color = named(s, "specular-color-half");
+    Material& color = namedMaterial(s, "specular-color-half");
     color.pbr.specularColorTexture = TextureRef{};
     color.pbr.specularColor = right ? glm::vec3(0.0f, gpu::srgbToLinear(128.0f / 255.0f), 1.0f) : glm::vec3(1.0f);
     return s;

@@ -28,20 +28,14 @@ namespace {
 constexpr int kQuads = 2;
 constexpr std::uint32_t kSpp = 64;
 
-Material& named(Scene& s, const std::string& name) {
-    for (Material& m : s.materials)
-        if (m.name == name) return m;
-    throw std::runtime_error("no material " + name);
-}
-
 /// The scene with the transmission textures replaced by constants: `right` picks the value of
 /// the half texture's right texel (else its left).
 Scene reference(std::uint32_t seed, bool right) {
     Scene s = halfQuadsScene("transmission-textures.gltf", kQuads, seed);
-    Material& half = named(s, "transmission-half");
+    Material& half = namedMaterial(s, "transmission-half");
     half.pbr.transmissionTexture = TextureRef{};
     half.pbr.transmission = right ? 1.0f : 0.0f;
-    Material& uniform = named(s, "transmission-uniform");
+    Material& uniform = namedMaterial(s, "transmission-uniform");
     uniform.pbr.transmissionTexture = TextureRef{};
     uniform.pbr.transmission = 128.0f / 255.0f;
     return s;
