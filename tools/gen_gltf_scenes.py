@@ -540,6 +540,22 @@ def emissive_spot(out):
     g.write_gltf(out / "emissive-spot.gltf")
 
 
+def add_half_quads(g, uv_accessors):
+    """One 2 x 2 quad per material of g, quad i at x in [2.5 i, 2.5 i + 2], y in [0, 2] in the plane
+    z = 0 facing +z (tests/gpu/half_quads.h), each its own mesh and node, and the default scene.
+    uv_accessors() adds a quad's UV accessors (corners: top left, top right, bottom right, bottom left)."""
+    for i, m in enumerate(g.doc["materials"]):
+        x0 = 2.5 * i
+        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
+        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3")}
+        attrs.update(uv_accessors())
+        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
+                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+
+
 def specular_textures(out):
     """KHR_materials_specular specularTexture (A) and specularColorTexture (RGB, sRGB): see the
     docstring at the top. RGB of the specular textures and A of the colour one are decoys: the
@@ -561,17 +577,7 @@ def specular_textures(out):
         mat("specular-uniform", {"specularTexture": {"index": 1}}),
         mat("specular-color-half", {"specularColorFactor": [1, 1, 1], "specularColorTexture": {"index": 2}}),
     ]
-    uv = [0, 0, 1, 0, 1, 1, 0, 1]
-    for i, m in enumerate(g.doc["materials"]):
-        x0 = 2.5 * i
-        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
-        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
-                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
-        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
-                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
-    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
-    g.doc["scene"] = 0
-    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    add_half_quads(g, lambda: {"TEXCOORD_0": g.accessor([0, 0, 1, 0, 1, 1, 0, 1], FLOAT, "VEC2")})
     g.write_gltf(out / "specular-textures.gltf")
 
 
@@ -589,17 +595,7 @@ def transmission_textures(out):
                                                 "roughnessFactor": 0.5},
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": i}}}}
         for i, name in enumerate(["transmission-half", "transmission-uniform"])]
-    uv = [0, 0, 1, 0, 1, 1, 0, 1]
-    for i, m in enumerate(g.doc["materials"]):
-        x0 = 2.5 * i
-        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
-        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
-                 "TEXCOORD_0": g.accessor(uv, FLOAT, "VEC2")}
-        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
-                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
-    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
-    g.doc["scene"] = 0
-    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    add_half_quads(g, lambda: {"TEXCOORD_0": g.accessor([0, 0, 1, 0, 1, 1, 0, 1], FLOAT, "VEC2")})
     g.write_gltf(out / "transmission-textures.gltf")
 
 
@@ -618,19 +614,9 @@ def texcoord1(out):
                                                           "roughnessFactor": 0.5},
          "extensions": {"KHR_materials_specular": {"specularTexture": {"index": 1, "texCoord": 1}}}},
     ]
-    uv0 = [1, 0, 0, 0, 0, 1, 1, 1]  # mirrored
-    uv1 = [0, 0, 65535, 0, 65535, 65535, 0, 65535]
-    for i, m in enumerate(g.doc["materials"]):
-        x0 = 2.5 * i
-        pos = [(x0, 2, 0), (x0 + 2, 2, 0), (x0 + 2, 0, 0), (x0, 0, 0)]  # top left, top right, bottom right, bottom left
-        attrs = {"POSITION": g.positions(pos), "NORMAL": g.accessor([0, 0, 1] * 4, FLOAT, "VEC3"),
-                 "TEXCOORD_0": g.accessor(uv0, FLOAT, "VEC2"),
-                 "TEXCOORD_1": g.accessor(uv1, USHORT, "VEC2", normalized=True)}
-        g.add("meshes", {"name": m["name"], "primitives": [{"attributes": attrs, "material": i,
-                                                            "indices": g.accessor([0, 2, 1, 0, 3, 2], UBYTE, "SCALAR")}]})
-    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
-    g.doc["scene"] = 0
-    g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
+    add_half_quads(g, lambda: {"TEXCOORD_0": g.accessor([1, 0, 0, 0, 0, 1, 1, 1], FLOAT, "VEC2"),  # mirrored
+                               "TEXCOORD_1": g.accessor([0, 0, 65535, 0, 65535, 65535, 0, 65535], USHORT, "VEC2",
+                                                        normalized=True)})
     g.write_gltf(out / "texcoord1.gltf")
 
 

@@ -211,26 +211,22 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
             if (len > 0.0 && std::isfinite(len)) mv.normal[base + i] = glm::vec3(n / len);
         }
     }
+    // TEXCOORD_0 and TEXCOORD_1: float, or normalized unsigned byte / short (glTF 2.0 sec. 3.7.2.1;
+    // byte and short: KHR_mesh_quantization). Returns the set's values (empty: absent).
+    auto readUvSet = [&](const char* name, std::uint32_t flag, std::vector<glm::vec2>& dest) {
+        std::vector<float> uvs = readAttribute(doc, p, name, where, 2, {kFloat, kByte, kUByte, kShort, kUShort}, nv);
+        if (!uvs.empty()) {
+            flags |= flag;
+            dest.resize(base, glm::vec2(0.0f));
+            for (std::size_t i = 0; i < nv; ++i) dest.emplace_back(uvs[2 * i], uvs[2 * i + 1]);
+        } else if (!dest.empty()) {
+            dest.resize(base + nv, glm::vec2(0.0f));
+        }
+        return uvs;
+    };
+    readUvSet("TEXCOORD_0", TriangleVertices::kHasUv, mv.uv);
     {
-        const std::vector<float> uvs = readAttribute(doc, p, "TEXCOORD_0", where, 2, {kFloat, kByte, kUByte, kShort, kUShort}, nv);
-        if (!uvs.empty()) {
-            flags |= TriangleVertices::kHasUv;
-            mv.uv.resize(base, glm::vec2(0.0f));
-            for (std::size_t i = 0; i < nv; ++i) mv.uv.emplace_back(uvs[2 * i], uvs[2 * i + 1]);
-        } else if (!mv.uv.empty()) {
-            mv.uv.resize(base + nv, glm::vec2(0.0f));
-        }
-    }
-    {  // TEXCOORD_1, read as TEXCOORD_0 (float, or normalized unsigned byte / short; glTF 2.0 sec. 3.7.2.1;
-       // byte and short: KHR_mesh_quantization)
-        const std::vector<float> uvs = readAttribute(doc, p, "TEXCOORD_1", where, 2, {kFloat, kByte, kUByte, kShort, kUShort}, nv);
-        if (!uvs.empty()) {
-            flags |= TriangleVertices::kHasUv1;
-            mv.uv1.resize(base, glm::vec2(0.0f));
-            for (std::size_t i = 0; i < nv; ++i) mv.uv1.emplace_back(uvs[2 * i], uvs[2 * i + 1]);
-        } else if (!mv.uv1.empty()) {
-            mv.uv1.resize(base + nv, glm::vec2(0.0f));
-        }
+        const std::vector<float> uvs = readUvSet("TEXCOORD_1", TriangleVertices::kHasUv1, mv.uv1);
         // glTF 2.0 textureInfo.texCoord: "A mesh primitive MUST have the corresponding texture coordinate
         // attributes for the material to be applicable to it."
         if (uvs.empty()) {
