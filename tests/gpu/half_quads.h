@@ -76,11 +76,7 @@ inline void expectSameWithinNoise(const PixelStats& a, const PixelStats& b, cons
     ASSERT_GT(pixels.size(), 500u) << what;
     for (int c = 0; c < 3; ++c) {
         const Estimate ea = average(a, pixels, c), eb = average(b, pixels, c);
-        Estimate d;
-        d.mean = ea.mean - eb.mean;
-        d.var = ea.var + eb.var;
-        d.n = std::min(ea.n, eb.n);
-        EXPECT_TRUE(withinNoise(d, 0.0, what + " (" + std::to_string(ea.mean) + " vs " + std::to_string(eb.mean) + "), " + kChannel[c],
+        EXPECT_TRUE(withinNoise(difference(ea, eb), 0.0, what + " (" + std::to_string(ea.mean) + " vs " + std::to_string(eb.mean) + "), " + kChannel[c],
                                 true));
     }
 }

@@ -21,6 +21,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -268,6 +269,15 @@ inline double footprintMean(const gpu::GpuFrame& f, std::uint32_t i, std::uint32
 
 const char* const kChannel[] = {"R", "G", "B"};
 
+/// a - b of two independent estimates (its variance the sum of theirs), to z-test against 0.
+inline Estimate difference(const Estimate& a, const Estimate& b) {
+    Estimate d;
+    d.mean = a.mean - b.mean;
+    d.var = a.var + b.var;
+    d.n = std::min(a.n, b.n);
+    return d;
+}
+
 /// Two independent renders of the same image (size x size pixels) that must agree within noise:
 /// the whole image (printed) and every block x block square, per channel, z-test of a - b against 0
 /// (3 x (1 + (size / block)^2) tests of zBudget()). `what` names the pair in messages. Returns the
@@ -283,10 +293,7 @@ inline glm::dvec3 expectRendersAgree(const PixelStats& a, const PixelStats& b, s
         for (int c = 0; c < 3; ++c) {
             const Estimate ea = average(a, px, c), eb = average(b, px, c);
             if (name == "image") imageMean[c] = ea.mean;
-            Estimate d = ea;
-            d.mean = ea.mean - eb.mean;
-            d.var = ea.var + eb.var;
-            EXPECT_TRUE(withinNoise(d, 0.0, what + ", " + name + ", " + kChannel[c], name == "image"));
+            EXPECT_TRUE(withinNoise(difference(ea, eb), 0.0, what + ", " + name + ", " + kChannel[c], name == "image"));
         }
     return imageMean;
 }
