@@ -1,37 +1,37 @@
 #version 460
 // vkpath's path tracer: one invocation per pixel adds push.batch.y samples to that pixel's sums.
-// Unidirectional path tracing ("Ray Tracing: The Rest of Your Life", sec. 2-12) with four ways
-// to sample at a diffuse vertex (SAMPLER, a specialization constant); "light" includes the
-// environment (lib/environment.glsl) when the scene has one:
-//   bsdf    - cosine-weighted; emission counted wherever a ray hits it;
-//   light   - next-event estimation: one emitter picked by power + shadow ray; emission found by
-//             the continuing cosine-sampled ray is then skipped (it was already counted);
-//   mixture - the book's mixture_pdf: 0.5 cosine + 0.5 light (picked uniformly), pdf the sum;
-//   mis     - the light sample of `light` and the cosine sample both count, each weighted by the
-//             power heuristic (Veach 1997, ch. 9), the light pdf including its pick probability.
-// At a glTF metallic-roughness vertex (MAT_PBR) the BRDF sample replaces the cosine sample and
-// `light` works as `mis` (lib/scatter_pbr.glsl).
+// Unidirectional path tracing ("Ray Tracing: The Rest of Your Life", sec. 2-12). bounce() is the
+// integrator and only that: what a ray finds (lib/hit.glsl), the light it finds weighted by MIS
+// (lib/direct_light.glsl foundLightWeight, lib/environment.glsl envEscaped), the BSDF there
+// (shared/bsdf.h), next-event estimation (lib/direct_light.glsl), the next direction from the
+// BSDF or from the book's mixture (lib/mixture.glsl), Russian roulette. The samplers (SAMPLER, a
+// specialization constant) differ only in those calls:
+//   bsdf    - BSDF sampling only; the light a ray finds counts fully;
+//   light   - next-event estimation: one light picked by power + shadow ray; the light the
+//             continuing BSDF sample finds is then skipped (it was already counted), except at a
+//             glossy BSDF (the glTF BRDF), where both are weighted as under mis;
+//   mixture - the book's mixture_pdf: 0.5 BSDF + 0.5 lights (picked uniformly), pdf the sum;
+//   mis     - the light sample and the BSDF sample both count, each weighted by the power
+//             heuristic (Veach 1997, ch. 9), the light pdf including its pick probability.
 // Every sample's random numbers depend only on (pixel, sample index, seed), and each sample is added
 // to the running sums in sample order, so any split of samples over dispatches gives the same bits.
 #extension GL_GOOGLE_include_directive : require
-// Workgroup size: 8x8 by default, any other from specialization constants 19, 20 (`--workgroup`).
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = 19, local_size_y_id = 20) in;
 
-#include "lib/bindings.glsl"
-#include "shared/intersect.h"
+#include "lib/bindings.glsl"  // the bindings, and every specialization constant (lib/spec_constants.glsl)
 #include "shared/rng.h"
 #define VKP_SEQUENCE_SOBOL (SEQUENCE == SEQUENCE_SOBOL)
 #include "shared/sample_stream.h"
-#include "shared/onb.h"
 #include "shared/sampling.h"
-#include "shared/scatter.h"
-#include "shared/ray_offset.h"
 #include "shared/compensated_sum.h"
-#include "lib/scene_lights.glsl"
 #include "lib/surface.glsl"
 #include "lib/alpha.glsl"  // defines the traversal's any-hit hook
 #include "lib/traverse.glsl"
+#include "lib/lights.glsl"
 #include "lib/environment.glsl"
+#include "shared/bsdf.h"
+#include "lib/hit.glsl"
+#include "lib/direct_light.glsl"
+#include "lib/mixture.glsl"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
@@ -51,16 +51,6 @@ struct PathState {
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
 };
-
-/// Radiance emitted by material m towards direction -d at a surface with geometric normal n.
-vec3 emitted(GpuMaterial m, uint mflags, vec3 d, vec3 n) {
-    if (!HAS_EMITTERS || (mflags & MATF_EMITS) == 0u) return vec3(0.0f);
-    bool front = dot(d, n) < 0.0f;
-    bool oneSided = (mflags & 15u) == MAT_DIFFUSE_LIGHT && (mflags & MATF_TWO_SIDED) == 0u;
-    return (front || !oneSided) ? vec3(m.m1.x, m.m1.y, m.m1.z) : vec3(0.0f);
-}
-
-#include "lib/scatter_pbr.glsl"
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
 /// over the pixel's square and, if the variant has it, a point on the defocus disk.
@@ -93,144 +83,48 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
 /// Trace the path's current ray and scatter at what it hits. Returns true when the path has ended
 /// (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
 bool bounce(inout PathState s, inout uint rays, inout uint passes) {
-    uint prim;
-    float t;
-    vec2 ab;
     rays++;
     s.depth++;
     sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
-    uint inst;
-    bool hit = traceClosestInstance(s.o, s.d, 0.0f, VKP_FAR, prim, t, ab, inst, passes);
-    if (!hit) {
-        s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);  // lib/environment.glsl
+    SurfaceHit h;
+    if (!findSurface(s.o, s.d, h, passes)) {
+        s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
         return true;
     }
-    GpuPrim p = fetchPrim(prim);
-    vec2 abAttr = ab;          // surface parameters of the stored triangle (its attribute record's order)
-    float extraOffset = 0.0f;  // an instance's transform rounding (shared/instance.h)
-    GpuPrim pObj = p;
-    GpuInstance ins;
-    bool instanced = HAS_INSTANCES && inst != GPU_NO_INSTANCE;
-    if (instanced) {
-        // An instance's triangle: shade it placed in the world, as the flattening loader places it.
-        ins = fetchInstance(inst);
-        p = instanceWorldPrim(ins, pObj);
-        ab = instanceWorldAb(ins, ab);
-    }
-    vec3 x = primHitPoint(p, s.o, s.d, t, ab);  // from the primitive, not o + t d (shared/ray_offset.h)
-    vec3 ng = primNormal(p, x);
-    if (instanced) extraOffset = instanceOffsetDistance(ins, pObj, abAttr, x, ng);
-    bool frontFace = dot(s.d, ng) < 0.0f;
-    vec3 ns = frontFace ? ng : -ng;  // faces the incoming ray
-    GpuMaterial m = fetchMaterial(primMaterial(p));
-    vec3 nShade = surfaceAt(prim, p, abAttr, ns, s.d, primMaterial(p), m, inst);  // textures, shading normal (lib/surface.glsl)
-    uint mflags = floatBitsToUint(m.m0.w);
-    uint mtype = mflags & 15u;
-    vec3 albedo = vec3(m.m0.x, m.m0.y, m.m0.z);
-    if (SAMPLER == SAMPLER_MIS) {
-        // Emission found by BSDF sampling, weighted against the light sample that could have found
-        // it from the previous vertex (power heuristic).
-        vec3 le = emitted(m, mflags, s.d, ng);
-        float w = 1.0f;
-        int li = primLight(p);
-        if (s.prevBsdfPdf > 0.0f && li >= 0)
-            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, s.prevX, s.d));
-        s.radiance += s.throughput * le * w;
-    } else if (s.countEmission) {
-        // `light` after a MAT_PBR vertex (which set prevBsdfPdf) weights like mis; else w = 1.
-        float w = 1.0f;
-        int li = primLight(p);
-        if (HAS_PBR && SAMPLER == SAMPLER_LIGHT && s.prevBsdfPdf > 0.0f && li >= 0)
-            w = powerHeuristic(s.prevBsdfPdf, pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, s.prevX, s.d));
-        s.radiance += s.throughput * emitted(m, mflags, s.d, ng) * w;
-    }
+    // The light this ray found, weighted against the light sample that could have found it from
+    // the previous vertex.
+    if (s.countEmission)
+        s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
     s.countEmission = true;
     s.prevBsdfPdf = 0.0f;
-    if (HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
-    if (s.depth >= frame.size.z) return true;                     // max_depth rays per path
+    if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
+    if (s.depth >= frame.size.z) return true;  // max_depth rays per path
 
-    vec3 newDir = s.d;
-    if (HAS_LAMBERTIAN && mtype == MAT_LAMBERTIAN) {
-        float uStrategy = sampleNext(s.smp);
-        vec2 u2 = sampleNext2(s.smp);
-        vec3 xo = spawnRayOriginExtra(p, ab, x, ns, extraOffset);
-        if ((SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn())) {
-            // Next-event estimation: the environment with probability pEnv (lib/environment.glsl),
-            // else one emitter picked by power (probability (1 - pEnv) x its share), one point on
-            // it, a shadow ray.
-            float pEnv = envPickProb();
-            bool toEnv = uStrategy < pEnv;
-            vec2 uLight = sampleNext2(s.smp);
-            if (toEnv) s.radiance += s.throughput * envDirectLight(xo, ns, albedo, uLight, pEnv, rays, passes);
-            float pickPdf;
-            float uPick = toEnv ? 0.0f : min((uStrategy - pEnv) / (1.0f - pEnv), 0.99999994f);
-            uint lprim = floatBitsToUint(fetchLight(pickLightPower(uPick, pickPdf)).l0.x);
-            pickPdf *= 1.0f - pEnv;
-            GpuPrim lp = fetchPrim(lprim);
-            LightSample ls = sampleLightPrim(lp, x, uLight);
-            float cosL = dot(ls.dir, ns);
-            // A flat light cannot light itself: no sample of it from a point on it (rounding may put
-            // the hit point on either side of its plane). A sphere can (from inside).
-            bool self = lprim == prim && primKind(p) != PRIM_SPHERE;
-            if (!toEnv && ls.pdf > 0.0f && cosL > 0.0f && !self) {
-                GpuMaterial lm = fetchMaterial(primMaterial(lp));
-                vec3 lx = x + ls.dist * ls.dir;
-                emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
-                vec3 le = emitted(lm, floatBitsToUint(lm.m0.w), ls.dir, primNormal(lp, lx));
-                if (max(le.x, max(le.y, le.z)) > 0.0f) {  // no shadow ray towards a light's back
-                    rays++;
-                    vec3 nl = primNormal(lp, lx);
-                    vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl));  // between offset end points
-                    if (!traceAny(xo, vec3(sr.x, sr.y, sr.z), 0.0f, sr.w, passes)) {
-                        float pl = ls.pdf * pickPdf;
-                        float w = (SAMPLER == SAMPLER_MIS) ? powerHeuristic(pl, pdfCosineHemisphere(cosL)) : 1.0f;
-                        s.radiance += s.throughput * albedo * VKP_INV_PI * cosL * le * (w / pl);
-                    }
-                }
-            }
-            // Continue with a cosine sample; `light` then ignores the emission it finds, `mis`
-            // weights it.
-            s.countEmission = (SAMPLER == SAMPLER_MIS);
-            newDir = sampleLambertian(ns, u2);
-            s.prevX = x;
-            s.prevN = ns;
-            s.prevBsdfPdf = pdfCosineHemisphere(dot(newDir, ns));
-            s.throughput *= albedo;
-        } else if (SAMPLER == SAMPLER_MIXTURE && mixtureLightCount() > 0u) {
-            if (uStrategy < 0.5f) {
-                newDir = sampleLambertian(ns, u2);
-            } else if (envOn() && pickUniform(2.0f * uStrategy - 1.0f, mixtureLightCount()) == lightCount()) {
-                float envPdf;  // the environment: the last entry of the light list (lib/environment.glsl)
-                newDir = sampleEnv(ns, u2, envPdf, passes);
-                if (!(envPdf > 0.0f)) return true;
-            } else {
-                uint li = pickUniform(2.0f * uStrategy - 1.0f, mixtureLightCount());  // < lightCount() here
-                LightSample ls = sampleLightPrim(fetchPrim(floatBitsToUint(fetchLight(li).l0.x)), x, u2);
-                newDir = ls.dir;
-                if (!(ls.pdf > 0.0f)) return true;  // no direction from this strategy: the sample is 0
-            }
-            float cosN = dot(newDir, ns);
-            if (!(cosN > 0.0f)) return true;  // below the surface: f = 0
-            float pdf = 0.5f * pdfCosineHemisphere(cosN) + 0.5f * pdfLightsAndEnv(x, ns, newDir, passes);
-            s.throughput *= albedo * VKP_INV_PI * cosN / pdf;
-        } else {
-            newDir = sampleLambertian(ns, u2);
-            s.throughput *= albedo;  // (albedo/pi) cos / (cos/pi)
+    Bsdf b = makeBsdf(h.m, h.ns, h.nShade, s.d, h.frontFace);
+    float uStrategy = bsdfIsDelta(b) ? 0.0f : sampleNext(s.smp);  // picks a light, or the mixture's half
+    vec3 uBsdf = bsdfNumbers(b, s.smp);
+    vec3 xo = spawnFrom(h, h.ns);
+    bool nee = !bsdfIsDelta(b) && neeOn();
+    if (nee) s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, sampleNext2(s.smp), rays, passes);
+    vec3 dir;
+    if (mixtureOn(b)) {
+        if (!sampleMixture(b, h.x, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
+    } else {
+        float pdf;
+        vec3 weight;
+        if (!sampleBsdf(b, uBsdf, dir, pdf, weight)) return true;
+        s.throughput *= weight;
+        if (nee) {
+            // `light` ignores the light this sample finds (already counted), `mis` weights it.
+            s.countEmission = neeWeighted(b);
+            s.prevX = h.x;
+            s.prevN = h.ns;
+            s.prevBsdfPdf = pdf;
         }
-        s.o = xo;
-    } else if (HAS_METAL && mtype == MAT_METAL) {
-        bool absorbed;
-        newDir = scatterMetal(s.d, ns, m.m1.w, vec3(sampleNext(s.smp), sampleNext(s.smp), sampleNext(s.smp)), absorbed);
-        if (absorbed) return true;
-        s.throughput *= albedo;
-        s.o = spawnRayOriginExtra(p, ab, x, ns, extraOffset);
-    } else if (HAS_DIELECTRIC && mtype == MAT_DIELECTRIC) {
-        newDir = scatterDielectric(s.d, ns, frontFace, m.m1.w, (mflags & MATF_FRESNEL_EXACT) != 0u, sampleNext(s.smp));
-        s.o = spawnRayOriginExtra(p, ab, x, dot(newDir, ns) > 0.0f ? ns : -ns, extraOffset);
-    } else if (HAS_PBR && mtype == MAT_PBR) {
-        if (scatterPbr(s, m, p, prim, ab, x, ns, nShade, extraOffset, newDir, rays, passes)) return true;
     }
-    s.d = newDir;
+    // A refracted ray leaves on the other side.
+    s.o = (HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f)) ? spawnFrom(h, -h.ns) : xo;
+    s.d = dir;
 
     // Russian roulette (unbiased): continue with probability q, divide by q.
     if (s.depth >= frame.counts.y) {

@@ -2,9 +2,12 @@
 
 #include <bit>
 #include <cstdio>
+#include <iterator>
+#include <stdexcept>
 
 #include "render/environment.h"
 #include "render/texture_pack.h"
+#include "shared/kernel_interface.h"
 
 namespace vkp {
 
@@ -61,92 +64,102 @@ bool parseLightSampling(const std::string& name, LightSampling& out) {
     return true;
 }
 
+namespace {
+/// "a+b+c" of the names of the bits set in mask (names indexed by bit).
+template <std::size_t N>
+std::string bitNames(std::uint32_t mask, const char* const (&names)[N]) {
+    std::string out;
+    for (std::uint32_t i = 0; i < N; ++i)
+        if ((mask >> i) & 1u) out += (out.empty() ? "" : "+") + std::string(names[i]);
+    return out.empty() ? "none" : out;
+}
+std::uint32_t bit(std::uint32_t i) { return 1u << i; }
+}  // namespace
+
+std::vector<SpecConstant> Features::specTable() const {
+    const auto on = [](bool b, const char* label) { return b ? std::string(label) : std::string(); };
+    std::string materialsLabel = "materials:" + (materials ? bitNames(materials, gpu::kMaterialTypeNames) : std::string());
+    if (emitters) materialsLabel += materials ? "+emission" : "emission";
+    if (!materials && !emitters) materialsLabel += "none";
+    std::string minSize;
+    if (lightSampling == LightSampling::Auto && solidAngleMinSize != kSolidAngleMinSize) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "solid-angle-min:%g", double(solidAngleMinSize));
+        minSize = buf;
+    }
+    // One entry per constant_id, in id order (shaders/lib/spec_constants.glsl).
+    const SpecConstant table[] = {
+        {VKP_SPEC_SHAPES, "SHAPES", shapes, "prims:" + bitNames(shapes, gpu::kPrimKindNames)},
+        {VKP_SPEC_MATERIALS, "MATERIALS", materials, materialsLabel},
+        {VKP_SPEC_HAS_EMITTERS, "HAS_EMITTERS", emitters, ""},  // in the materials label
+        {VKP_SPEC_LIGHTS, "LIGHTS", lights, "lights:" + bitNames(lights, gpu::kPrimKindNames)},
+        {VKP_SPEC_SAMPLER, "SAMPLER", std::uint32_t(sampler), std::string("sampler:") + samplerName(sampler)},
+        {VKP_SPEC_SEQUENCE, "SEQUENCE", std::uint32_t(sequence), std::string("sequence:") + sequenceName(sequence)},
+        {VKP_SPEC_SOLID_ANGLE_LIGHTS, "SOLID_ANGLE_LIGHTS", lightSampling != LightSampling::Area,
+         lightSampling != LightSampling::Auto ? std::string("light-sampling:") + lightSamplingName(lightSampling) : ""},
+        {VKP_SPEC_SOLID_ANGLE_MIN_SIZE, "SOLID_ANGLE_MIN_SIZE",
+         std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f), minSize},
+        {VKP_SPEC_HAS_DEFOCUS, "HAS_DEFOCUS", defocus, on(defocus, "defocus")},
+        {VKP_SPEC_HAS_ENV, "HAS_ENV", environment, on(environment, environmentMap ? "env:map" : "env:constant")},
+        {VKP_SPEC_HAS_ENV_MAP, "HAS_ENV_MAP", environmentMap, ""},  // in the HAS_ENV label
+        {VKP_SPEC_HAS_VERTEX_ATTRIBUTES, "HAS_VERTEX_ATTRIBUTES", vertexAttributes, on(vertexAttributes, "vertex-attributes")},
+        {VKP_SPEC_HAS_TEXTURES, "HAS_TEXTURES", textures, on(textures, "textures")},
+        {VKP_SPEC_HAS_EXTENSION_TEXTURES, "HAS_EXTENSION_TEXTURES", extensionTextures,
+         on(extensionTextures, "extension-textures")},
+        {VKP_SPEC_HAS_TEXCOORD1, "HAS_TEXCOORD1", texCoord1, on(texCoord1, "texcoord1")},
+        {VKP_SPEC_HAS_ALPHA, "HAS_ALPHA", alpha, on(alpha, "alpha")},
+        {VKP_SPEC_HAS_INSTANCES, "HAS_INSTANCES", instances, on(instances, "instances")},
+        {VKP_SPEC_WORKGROUP_X, "WORKGROUP_X", workgroupX, ""},  // the image does not depend on it
+        {VKP_SPEC_WORKGROUP_Y, "WORKGROUP_Y", workgroupY, ""},
+    };
+    static_assert(std::size(table) == VKP_SPEC_COUNT, "one entry per specialization constant");
+    std::vector<SpecConstant> out(std::begin(table), std::end(table));
+    for (std::uint32_t i = 0; i < out.size(); ++i)
+        if (out[i].id != i) throw std::logic_error(std::string("Features::specTable: ") + out[i].name + " out of id order");
+    return out;
+}
+
 std::vector<std::uint32_t> Features::specConstants() const {
-    return {spheres, parallelograms, lambertian, metal, dielectric, emitters,
-            sphereLights, quadLights, std::uint32_t(sampler), defocus, environment, environmentMap, pbr,
-            vertexAttributes, textures, alpha, std::uint32_t(sequence), lightSampling != LightSampling::Area,
-            instances, workgroupX, workgroupY,
-            std::bit_cast<std::uint32_t>(lightSampling == LightSampling::Auto ? solidAngleMinSize : 0.0f),
-            triangleLights, extensionTextures, texCoord1};
+    std::vector<std::uint32_t> values;
+    for (const SpecConstant& c : specTable()) values.push_back(c.value);
+    return values;
 }
 
 std::string Features::name() const {
-    std::string prims, mats, lights;
-    auto add = [](std::string& s, bool on, const char* what) {
-        if (!on) return;
-        if (!s.empty()) s += '+';
-        s += what;
-    };
-    add(prims, spheres, "sphere");
-    add(prims, parallelograms, "quad/triangle");
-    add(mats, lambertian, "lambertian");
-    add(mats, metal, "metal");
-    add(mats, dielectric, "dielectric");
-    add(mats, pbr, "pbr");
-    add(mats, emitters, "emission");
-    add(lights, sphereLights, "sphere");
-    add(lights, quadLights, "quad");
-    add(lights, triangleLights, "triangle");
-    std::string out = "prims:";
-    out += prims.empty() ? "none" : prims;
-    out += " materials:";
-    out += mats.empty() ? "none" : mats;
-    out += " lights:";
-    out += lights.empty() ? "none" : lights;
-    out += " sampler:";
-    out += samplerName(sampler);
-    out += " sequence:";
-    out += sequenceName(sequence);
-    if (lightSampling != LightSampling::Auto) out += std::string(" light-sampling:") + lightSamplingName(lightSampling);
-    if (lightSampling == LightSampling::Auto && solidAngleMinSize != kSolidAngleMinSize) {
-        char buf[48];
-        std::snprintf(buf, sizeof buf, " solid-angle-min:%g", double(solidAngleMinSize));
-        out += buf;
-    }
-    if (defocus) out += " defocus";
-    if (environment) out += environmentMap ? " env:map" : " env:constant";
-    if (vertexAttributes) out += " vertex-attributes";
-    if (textures) out += " textures";
-    if (extensionTextures) out += " extension-textures";
-    if (texCoord1) out += " texcoord1";
-    if (alpha) out += " alpha";
-    if (instances) out += " instances";
+    std::string out;
+    for (const SpecConstant& c : specTable())
+        if (!c.label.empty()) out += (out.empty() ? "" : " ") + c.label;
     return out;
 }
 
 Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
     Features f;
     f.sampler = sampler;
+    const std::uint32_t surfaceKinds = bit(gpu::PRIM_SPHERE) | bit(gpu::PRIM_QUAD) | bit(gpu::PRIM_TRIANGLE);
     if (full) {
-        f.spheres = f.parallelograms = f.lambertian = f.metal = f.dielectric = f.emitters = f.pbr = true;
-        f.sphereLights = f.quadLights = f.triangleLights = f.defocus = f.environment = f.environmentMap = true;
+        f.shapes = f.lights = surfaceKinds;
+        f.materials = bit(gpu::MAT_TYPE_COUNT) - 1u;
+        f.emitters = f.defocus = f.environment = f.environmentMap = true;
         f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
     forEachShape(scene, [&](const Shape& s) {
-        (s.type == ShapeType::Sphere ? f.spheres : f.parallelograms) = true;
+        f.shapes |= bit(std::uint32_t(s.type));
         used[s.material] = true;
-        if (s.sampled) {
-            if (s.type == ShapeType::Sphere) f.sphereLights = true;
-            else if (s.type == ShapeType::Quad) f.quadLights = true;
-            else f.triangleLights = true;
-        }
+        if (s.sampled) f.lights |= bit(std::uint32_t(s.type));
     });
     f.instances = !scene.instances.empty();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const Material m = kernelMaterial(scene.materials[i]);  // what the kernel renders it as
-        f.lambertian |= m.type == MaterialType::Lambertian;
-        f.metal |= m.type == MaterialType::Metal;
-        f.dielectric |= m.type == MaterialType::Dielectric;
-        f.pbr |= m.type == MaterialType::Pbr;
+        // diffuse_light has no bit of its own: it never scatters, and HAS_EMITTERS compiles it in.
+        if (m.type != MaterialType::DiffuseLight) f.materials |= bit(std::uint32_t(m.type));
         if (transmissionTextured(m)) {  // glass (or metal) where its texture says so
             const Material t = transmittedMaterial(m);
-            f.dielectric |= t.type == MaterialType::Dielectric;
-            f.metal |= t.type == MaterialType::Metal;
+            f.materials |= bit(std::uint32_t(t.type));
         }
-        f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;  // diffuse_light never scatters
+        f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;
     f.environment = hasEnvironmentLight(scene);

@@ -1,15 +1,22 @@
 // The shader variant a scene needs: which primitive, material and light kinds its pipeline
-// compiles in (specialization constants of shaders/lib/bindings.glsl, in the same order).
+// compiles in, as the specialization constants of shaders/lib/spec_constants.glsl (ids:
+// shaders/shared/kernel_interface.h).
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "scene/scene.h"
+#include "shared/kinds.h"
 
 namespace vkp {
 
-enum class Sampler : std::uint32_t { Bsdf = 0, Light = 1, Mixture = 2, Mis = 3 };
+enum class Sampler : std::uint32_t {
+    Bsdf = gpu::SAMPLER_BSDF,
+    Light = gpu::SAMPLER_LIGHT,
+    Mixture = gpu::SAMPLER_MIXTURE,
+    Mis = gpu::SAMPLER_MIS
+};
 const char* samplerName(Sampler s);
 /// Every sampler, for tests and benchmarks that must cover them all.
 inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sampler::Mixture, Sampler::Mis};
@@ -18,7 +25,7 @@ bool parseSampler(const std::string& name, Sampler& out);
 
 /// Where a sample's random numbers come from (shaders/shared/sample_stream.h): independent hashed
 /// random numbers per dimension, or Owen-scrambled Sobol' points (the default).
-enum class Sequence : std::uint32_t { Random = 0, Sobol = 1 };
+enum class Sequence : std::uint32_t { Random = gpu::SEQUENCE_RANDOM, Sobol = gpu::SEQUENCE_SOBOL };
 const char* sequenceName(Sequence s);
 /// "random" | "sobol" -> Sequence; false if unknown.
 bool parseSequence(const std::string& name, Sequence& out);
@@ -46,11 +53,20 @@ bool parseLightSampling(const std::string& name, LightSampling& out);
 /// scenes (README "Numbers on this machine", "Solid angle or area").
 inline constexpr float kSolidAngleMinSize = 0.1f;
 
+/// One specialization constant of the kernel: its constant_id, its GLSL name, its value (a bool
+/// as 0/1, a float as its bits) and what it adds to the variant's readable name ("" for nothing).
+struct SpecConstant {
+    std::uint32_t id;
+    const char* name;
+    std::uint32_t value;
+    std::string label;
+};
+
 struct Features {
-    bool spheres = false, parallelograms = false;  ///< primitive kinds present
-    bool lambertian = false, metal = false, dielectric = false, emitters = false;
-    bool pbr = false;  ///< glTF metallic-roughness materials (MaterialType::Pbr after kernelMaterial)
-    bool sphereLights = false, quadLights = false, triangleLights = false;  ///< kinds in the light list
+    std::uint32_t shapes = 0;     ///< bit gpu::PRIM_* for each primitive kind present
+    std::uint32_t materials = 0;  ///< bit gpu::MAT_* for each kernel material type (kernelMaterial) used
+    std::uint32_t lights = 0;     ///< bit gpu::PRIM_* for each kind in the light list
+    bool emitters = false;        ///< some material emits (diffuse_light, or emission on another type)
     bool defocus = false;
     bool environment = false;     ///< escaping rays see radiance (a map or a constant background)
     bool environmentMap = false;  ///< ... from a map (else constant)
@@ -66,12 +82,17 @@ struct Features {
     float solidAngleMinSize = kSolidAngleMinSize;  ///< for LightSampling::Auto (`--solid-angle-min`)
     std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
 
-    /// Values for constant_id 0..24, in the order of shaders/lib/bindings.glsl (13-15: lib/surface.glsl,
-    /// lib/alpha.glsl; 17: SOLID_ANGLE_LIGHTS; 18: HAS_INSTANCES; 19, 20: the workgroup size,
-    /// pathtrace.comp; 21: SOLID_ANGLE_MIN_SIZE, a float's bits; 22: HAS_TRIANGLE_LIGHTS;
-    /// 23: HAS_EXTENSION_TEXTURES, 24: HAS_TEXCOORD1, lib/surface.glsl).
+    bool hasShape(std::uint32_t kind) const { return (shapes >> kind) & 1u; }
+    bool hasMaterial(std::uint32_t type) const { return (materials >> type) & 1u; }
+    bool hasLight(std::uint32_t kind) const { return (lights >> kind) & 1u; }
+
+    /// Every specialization constant, in id order (VKP_SPEC_COUNT entries, checked): the one
+    /// table the pipeline's specialization data and name() are built from.
+    std::vector<SpecConstant> specTable() const;
+    /// The values of specTable(): constant_id i = specConstants()[i].
     std::vector<std::uint32_t> specConstants() const;
-    /// A readable name of the variant, e.g. "quad+sphere lambertian+dielectric+emit lights:quad+sphere mixture".
+    /// A readable name of the variant from the table's labels, e.g.
+    /// "prims:sphere+quad materials:lambertian+dielectric+emission lights:quad sampler:mis sequence:sobol".
     std::string name() const;
 };
 

@@ -12,6 +12,7 @@
 #include "render/adaptive.h"
 #include "render/ggx_albedo_table.h"
 #include "render/gpu_scene.h"
+#include "render/kernel_bindings.h"
 #include "render/light_table.h"
 #include "render/texture_pack.h"
 #include "vk/buffer.h"
@@ -20,25 +21,14 @@
 namespace vkp {
 
 namespace {
-// Binding numbers of shaders/lib/bindings.glsl.
-enum : std::uint32_t {
-    kBindingFrame = 0,
-    kBindingNodes,
-    kBindingPrims,
-    kBindingMaterials,
-    kBindingLights,
-    kBindingSum,
-    kBindingSumSq,
-    kBindingCounters,
-    kBindingEnvTexels,
-    kBindingEnvDist,
-    kBindingDecision,
-    kBindingActive,
-    kBindingAttributes,  // lib/surface.glsl
-    kBindingTexInfo,
-    kBindingTexels,
-    kBindingInstances,  // 15: shared/instance.h
-};
+vk::DescriptorType descriptorType(BindingKind k) {
+    switch (k) {
+        case BindingKind::UniformBuffer: return vk::DescriptorType::eUniformBuffer;
+        case BindingKind::UniformTexelBuffer: return vk::DescriptorType::eUniformTexelBuffer;
+        case BindingKind::StorageBuffer: return vk::DescriptorType::eStorageBuffer;
+    }
+    return vk::DescriptorType::eStorageBuffer;
+}
 
 template <class T>
 std::unique_ptr<GpuBuffer> uploadTexels(VulkanDevice& dev, const std::vector<T>& data) {
@@ -157,7 +147,7 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
         for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3}) materialTexels.push_back(t);
     static_assert(gpu::GPU_MATERIAL_TEXELS == 4, "one push_back per GpuMaterial member");
     frame.counts.w = std::uint32_t(materialTexels.size());
-    if (features_.pbr) {
+    if (features_.hasMaterial(gpu::MAT_PBR)) {
         const std::vector<glm::vec4>& table = ggxAlbedoTable();
         materialTexels.insert(materialTexels.end(), table.begin(), table.end());
     }
@@ -207,34 +197,27 @@ Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh,
 
     ComputePipelineDesc desc;
     desc.spirv = std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]));
-    desc.bindings = {vk::DescriptorType::eUniformBuffer,      vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eStorageBuffer,
-                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eStorageBuffer,      vk::DescriptorType::eStorageBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer,
-                     vk::DescriptorType::eUniformTexelBuffer, vk::DescriptorType::eUniformTexelBuffer};
+    for (const KernelBinding& b : kKernelBindings) desc.bindings.push_back(descriptorType(b.kind));
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
     auto& p = *impl_->pipeline;
-    p.bindBuffer(kBindingFrame, impl_->frame->buffer());
-    p.bindTexelView(kBindingNodes, *impl_->nodesView);
-    p.bindTexelView(kBindingPrims, *impl_->primsView);
-    p.bindTexelView(kBindingMaterials, *impl_->materialsView);
-    p.bindTexelView(kBindingLights, *impl_->lightsView);
-    p.bindBuffer(kBindingSum, impl_->sum->buffer());
-    p.bindBuffer(kBindingSumSq, impl_->sumSq->buffer());
-    p.bindBuffer(kBindingCounters, impl_->counters->buffer());
-    p.bindTexelView(kBindingEnvTexels, *impl_->envTexelsView);
-    p.bindTexelView(kBindingEnvDist, *impl_->envDistView);
-    p.bindBuffer(kBindingDecision, impl_->decision->buffer());
-    p.bindBuffer(kBindingActive, impl_->active->buffer());
-    p.bindTexelView(kBindingAttributes, *impl_->attributesView);
-    p.bindTexelView(kBindingTexInfo, *impl_->texInfoView);
-    p.bindTexelView(kBindingTexels, *impl_->texelsView);
-    p.bindTexelView(kBindingInstances, *impl_->instancesView);
+    p.bindBuffer(VKP_BINDING_FRAME, impl_->frame->buffer());
+    p.bindTexelView(VKP_BINDING_NODES, *impl_->nodesView);
+    p.bindTexelView(VKP_BINDING_PRIMS, *impl_->primsView);
+    p.bindTexelView(VKP_BINDING_MATERIALS, *impl_->materialsView);
+    p.bindTexelView(VKP_BINDING_LIGHTS, *impl_->lightsView);
+    p.bindBuffer(VKP_BINDING_ACCUM_SUM, impl_->sum->buffer());
+    p.bindBuffer(VKP_BINDING_ACCUM_SQ, impl_->sumSq->buffer());
+    p.bindBuffer(VKP_BINDING_COUNTERS, impl_->counters->buffer());
+    p.bindTexelView(VKP_BINDING_ENV_TEXELS, *impl_->envTexelsView);
+    p.bindTexelView(VKP_BINDING_ENV_DIST, *impl_->envDistView);
+    p.bindBuffer(VKP_BINDING_DECISION, impl_->decision->buffer());
+    p.bindBuffer(VKP_BINDING_ACTIVE, impl_->active->buffer());
+    p.bindTexelView(VKP_BINDING_ATTRIBUTES, *impl_->attributesView);
+    p.bindTexelView(VKP_BINDING_TEX_INFO, *impl_->texInfoView);
+    p.bindTexelView(VKP_BINDING_TEXELS, *impl_->texelsView);
+    p.bindTexelView(VKP_BINDING_INSTANCES, *impl_->instancesView);
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 

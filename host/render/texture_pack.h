@@ -25,7 +25,7 @@ inline constexpr std::uint32_t kTexSlotBaseColor = gpu::TEX_SLOT_BASE_COLOR,
 inline constexpr std::uint32_t kMatTexTexels = gpu::MAT_TEX_TEXELS;
 /// Texels of one primitive's vertex-attribute record: uv0 uv1 | uv2 flags uv1At | n0 | n1 | n2 | t0 | t1 |
 /// t2 (uv0..2: TEXCOORD_0 of the corners; uv1At: first texel of its TEXCOORD_1 record, 0: none).
-inline constexpr std::uint32_t kAttributeTexels = 8;
+inline constexpr std::uint32_t kAttributeTexels = gpu::ATTR_TEXELS;
 inline constexpr std::uint32_t kNoTexture = gpu::TEX_NO_TEXTURE;
 
 struct TexturePack {

@@ -10,12 +10,20 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "shared/kinds.h"
 
 namespace vkp {
 
 /// Pbr: the glTF 2.0 metallic-roughness material (with the extensions in PbrParams); only glTF
 /// files produce it. The kernel renders kernelMaterial(m): the glTF BRDF unless it emits or transmits.
-enum class MaterialType : std::uint32_t { Lambertian = 0, Metal = 1, Dielectric = 2, DiffuseLight = 3, Pbr = 4 };
+/// Values are the kernel's MAT_* (shaders/shared/kinds.h).
+enum class MaterialType : std::uint32_t {
+    Lambertian = gpu::MAT_LAMBERTIAN,
+    Metal = gpu::MAT_METAL,
+    Dielectric = gpu::MAT_DIELECTRIC,
+    DiffuseLight = gpu::MAT_DIFFUSE_LIGHT,
+    Pbr = gpu::MAT_PBR
+};
 
 /// A texture lookup of a material: which texture of Scene::textures, which UV set, and the
 /// KHR_texture_transform of the lookup (identity when absent).
@@ -31,7 +39,7 @@ struct TextureRef {
 };
 
 /// How a glTF material's alpha (baseColor alpha times the texture's) is used (glTF 2.0 sec. 3.9.4).
-enum class AlphaMode : std::uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+enum class AlphaMode : std::uint32_t { Opaque = gpu::ALPHA_OPAQUE, Mask = gpu::ALPHA_MASK, Blend = gpu::ALPHA_BLEND };
 
 /// Parameters of a MaterialType::Pbr material (glTF 2.0 sec. 3.9 and the KHR_materials_*
 /// extensions), as in the file; factors multiply their texture's value. Colours are linear RGB.
@@ -71,7 +79,8 @@ struct Material {
     bool emits() const { return emit.x > 0.0f || emit.y > 0.0f || emit.z > 0.0f; }
 };
 
-enum class ShapeType : std::uint32_t { Sphere = 0, Quad = 1, Triangle = 2 };
+/// Values are the kernel's PRIM_* (shaders/shared/kinds.h).
+enum class ShapeType : std::uint32_t { Sphere = gpu::PRIM_SPHERE, Quad = gpu::PRIM_QUAD, Triangle = gpu::PRIM_TRIANGLE };
 
 /// One primitive in world space (its transform already applied).
 ///  - Sphere:   p0 = centre, radius
@@ -94,11 +103,11 @@ struct Shape {
 /// 16 bytes (one uvec4 texel on the GPU).
 struct TriangleVertices {
     std::uint32_t v[3] = {0, 0, 0};
-    std::uint32_t flags = 0;  ///< kHasNormal | kHasUv | kHasTangent
-    static constexpr std::uint32_t kHasNormal = 1;   ///< else shade with the geometric (flat) normal
-    static constexpr std::uint32_t kHasUv = 2;       ///< else UV = (0,0)
-    static constexpr std::uint32_t kHasTangent = 4;  ///< from the file, or generated for a normal map
-    static constexpr std::uint32_t kHasUv1 = 8;      ///< TEXCOORD_1 (else none: no texture may use it)
+    std::uint32_t flags = 0;  ///< kHasNormal | kHasUv | kHasTangent | kHasUv1 (the kernel's ATTR_*, shared/kinds.h)
+    static constexpr std::uint32_t kHasNormal = gpu::ATTR_HAS_NORMAL;    ///< else shade with the geometric (flat) normal
+    static constexpr std::uint32_t kHasUv = gpu::ATTR_HAS_UV;            ///< else UV = (0,0)
+    static constexpr std::uint32_t kHasTangent = gpu::ATTR_HAS_TANGENT;  ///< from the file, or generated for a normal map
+    static constexpr std::uint32_t kHasUv1 = gpu::ATTR_HAS_UV1;          ///< TEXCOORD_1 (else none: no texture may use it)
 };
 
 /// Per-vertex shading attributes of mesh triangles, in world space, structure of arrays. normal

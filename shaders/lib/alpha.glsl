@@ -11,11 +11,6 @@
 #define VKP_ALPHA_GLSL
 #include "lib/surface.glsl"
 
-layout(constant_id = 15) const bool HAS_ALPHA = true;  // some material has alphaMode MASK or BLEND
-
-const uint ALPHA_OPAQUE = 0u;  // AlphaMode (host/scene/scene.h)
-const uint ALPHA_MASK = 1u;
-
 uint alphaHashStep(uint x) {  // PCG output permutation (O'Neill 2014), as in "Hash Functions for GPU Rendering"
     uint s = x * 747796405u + 2891336453u;
     uint w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;

@@ -1,60 +1,38 @@
-// Descriptor bindings, specialization constants and data fetches of the path-tracing kernel.
-// Binding numbers must match host/render/renderer.cpp (kBinding*).
+// Descriptor bindings and data fetches of the path-tracing kernel. Binding numbers:
+// shared/kernel_interface.h (the host's descriptor types: host/render/kernel_bindings.cpp);
+// specialization constants: lib/spec_constants.glsl.
 #ifndef VKP_BINDINGS_GLSL
 #define VKP_BINDINGS_GLSL
 #include "shared/gpu_types.h"
+#include "shared/kernel_interface.h"
+#include "lib/spec_constants.glsl"
 
-// ---- Variant: what this scene needs (host/render/features.cpp). A false constant removes the
-// code it guards from the pipeline, which on lavapipe is the only way to make it free.
-layout(constant_id = 0) const bool HAS_SPHERES = true;
-layout(constant_id = 1) const bool HAS_PARALLELOGRAMS = true;  // quads and triangles
-layout(constant_id = 2) const bool HAS_LAMBERTIAN = true;
-layout(constant_id = 3) const bool HAS_METAL = true;
-layout(constant_id = 4) const bool HAS_DIELECTRIC = true;
-layout(constant_id = 5) const bool HAS_EMITTERS = true;
-layout(constant_id = 6) const bool HAS_SPHERE_LIGHTS = true;         // sampled spheres
-layout(constant_id = 7) const bool HAS_QUAD_LIGHTS = true;           // sampled quads
-layout(constant_id = 22) const bool HAS_TRIANGLE_LIGHTS = true;      // sampled triangles (apart from quads:
-// every compiled-in light kind's sampling code runs at every vertex on lavapipe, DESIGN.md)
-layout(constant_id = 8) const uint SAMPLER = 2u;                     // SAMPLER_* below
-layout(constant_id = 9) const bool HAS_DEFOCUS = true;
-layout(constant_id = 10) const bool HAS_ENV = true;      // escaping rays see radiance (lib/environment.glsl)
-layout(constant_id = 11) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
-layout(constant_id = 12) const bool HAS_PBR = true;  // glTF metallic-roughness materials (MAT_PBR)
-layout(constant_id = 16) const uint SEQUENCE = 1u;   // SEQUENCE_* below (shared/sample_stream.h)
-layout(constant_id = 17) const bool SOLID_ANGLE_LIGHTS = true;  // NEE samples quads/triangles in solid angle (else area)
-// ... from points where the light's apparent size (area / squared distance to its centre, sr) is at
-// least this (shared/rect_sampling.h apparentSize; 0: everywhere; `--light-sampling auto|solid-angle`).
-layout(constant_id = 21) const float SOLID_ANGLE_MIN_SIZE = 0.0f;
-
-// intersect.h compiles out the primitive kinds a scene does not have (plain `if`s on these).
+// The shared code compiles out what a scene does not have (plain `if`s on these): primitive kinds
+// (shared/intersect.h), material types and shading normals (shared/bsdf.h).
 #define VKP_HAS_SPHERES HAS_SPHERES
 #define VKP_HAS_PARALLELOGRAMS HAS_PARALLELOGRAMS
+#define VKP_HAS_MATERIAL(t) (((MATERIALS >> (t)) & 1u) != 0u)
+#define VKP_SHADING_NORMALS HAS_VERTEX_ATTRIBUTES
 
-const uint SAMPLER_BSDF = 0u;     // cosine sampling only; emission counted where rays hit it
-const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
-const uint SAMPLER_MIXTURE = 2u;  // the book: 0.5 cosine + 0.5 lights (uniform pick), one direction
-const uint SAMPLER_MIS = 3u;      // light sample + BSDF sample, power heuristic (Veach 1997)
-
-const uint SEQUENCE_RANDOM = 0u;  // independent hashed random numbers per dimension (shared/rng.h)
-const uint SEQUENCE_SOBOL = 1u;   // Owen-scrambled Sobol' points, padded (shared/sobol.h)
-
-
-layout(set = 0, binding = 0, std140) uniform FrameBlock { GpuFrame frame; };
-layout(set = 0, binding = 1) uniform usamplerBuffer uNodes;
-layout(set = 0, binding = 2) uniform usamplerBuffer uPrims;
-layout(set = 0, binding = 3) uniform usamplerBuffer uMaterials;
-layout(set = 0, binding = 4) uniform usamplerBuffer uLights;
+layout(set = 0, binding = VKP_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
+layout(set = 0, binding = VKP_BINDING_NODES) uniform usamplerBuffer uNodes;
+layout(set = 0, binding = VKP_BINDING_PRIMS) uniform usamplerBuffer uPrims;
+layout(set = 0, binding = VKP_BINDING_MATERIALS) uniform usamplerBuffer uMaterials;
+layout(set = 0, binding = VKP_BINDING_LIGHTS) uniform usamplerBuffer uLights;
 // Per pixel i: [2i] = running sum (hi), [2i+1] = its compensation (lo), shared/compensated_sum.h.
 // accumSum: RGB = sum of samples, w = number of finite samples; accumSq: RGB = sum of squares.
-layout(set = 0, binding = 5, std430) buffer AccumSum { vec4 accumSum[]; };
-layout(set = 0, binding = 6, std430) buffer AccumSq { vec4 accumSq[]; };
-layout(set = 0, binding = 7, std430) buffer Counters { uint counters[]; };
-layout(set = 0, binding = 8) uniform usamplerBuffer uEnvTexels;  // rgb radiance per map texel (bits)
-layout(set = 0, binding = 9) uniform samplerBuffer uEnvDist;      // R32F: shared/distribution.h table
+layout(set = 0, binding = VKP_BINDING_ACCUM_SUM, std430) buffer AccumSum { vec4 accumSum[]; };
+layout(set = 0, binding = VKP_BINDING_ACCUM_SQ, std430) buffer AccumSq { vec4 accumSq[]; };
+layout(set = 0, binding = VKP_BINDING_COUNTERS, std430) buffer Counters { uint counters[]; };
+layout(set = 0, binding = VKP_BINDING_ENV_TEXELS) uniform usamplerBuffer uEnvTexels;  // rgb radiance per map texel (bits)
+layout(set = 0, binding = VKP_BINDING_ENV_DIST) uniform samplerBuffer uEnvDist;      // R32F: shared/distribution.h table
 // Adaptive sampling (host/render/adaptive.h): [2i], [2i+1] = pixel i's decision-stream sums.
-layout(set = 0, binding = 10, std430) buffer DecisionSums { vec4 decisionSums[]; };
-layout(set = 0, binding = 11, std430) readonly buffer ActivePixels { uint activePixels[]; };
+layout(set = 0, binding = VKP_BINDING_DECISION, std430) buffer DecisionSums { vec4 decisionSums[]; };
+layout(set = 0, binding = VKP_BINDING_ACTIVE, std430) readonly buffer ActivePixels { uint activePixels[]; };
+// Vertex attributes and textures (lib/surface.glsl; layouts: host/render/texture_pack.h).
+layout(set = 0, binding = VKP_BINDING_ATTRIBUTES) uniform usamplerBuffer uAttributes;
+layout(set = 0, binding = VKP_BINDING_TEX_INFO) uniform usamplerBuffer uTexInfo;
+layout(set = 0, binding = VKP_BINDING_TEXELS) uniform usamplerBuffer uTexels;
 layout(push_constant) uniform PushBlock { GpuPush push; };
 
 vec4 fetchF(usamplerBuffer b, int i) { return uintBitsToFloat(texelFetch(b, i)); }
@@ -92,6 +70,10 @@ GpuMaterial fetchMaterial(uint i) {
     return m;
 }
 
+/// shared/microfacet.h's table access: the GGX albedo table follows the materials in their texel
+/// buffer (host/render/ggx_albedo_table.cpp), at texel frame.counts.w.
+vec4 ggxAlbedoFetch(uint t) { return fetchF(uMaterials, int(frame.counts.w + t)); }
+
 GpuLight fetchLight(uint i) {
     GpuLight l;
     l.l0 = fetchF(uLights, int(i));
@@ -100,10 +82,9 @@ GpuLight fetchLight(uint i) {
 
 // ---- Instances (two-level BVH, shared/instance.h): compiled in only for scenes that have some.
 // The traversal (lib/traverse_wide.glsl) tests VKP_HAS_INSTANCES.
-layout(constant_id = 18) const bool HAS_INSTANCES = true;
 #define VKP_HAS_INSTANCES HAS_INSTANCES
 #include "shared/instance.h"
-layout(set = 0, binding = 15) uniform usamplerBuffer uInstances;  // GPU_INSTANCE_TEXELS per instance
+layout(set = 0, binding = VKP_BINDING_INSTANCES) uniform usamplerBuffer uInstances;  // GPU_INSTANCE_TEXELS per instance
 
 GpuInstance fetchInstance(uint i) {
     int base = int(i * GPU_INSTANCE_TEXELS);

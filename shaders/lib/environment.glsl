@@ -12,7 +12,9 @@
 #ifndef VKP_ENVIRONMENT_GLSL
 #define VKP_ENVIRONMENT_GLSL
 #include "lib/bindings.glsl"
+#include "lib/lights.glsl"
 #include "lib/traverse.glsl"
+#include "shared/light_pick.h"
 #include "shared/sampling.h"
 #include "shared/scatter.h"
 
@@ -62,38 +64,28 @@ vec3 sampleEnv(vec3 n, vec2 u, out float pdf, inout uint passes) {
     return sampleEnvMap(frame.envSize.x, frame.envSize.y, envRotation(), u, pdf, uv);
 }
 
-/// Next-event estimation towards the environment from a lambertian vertex x (normal ns facing the
-/// incoming ray, offset origin xo) with albedo, the environment picked with probability pick:
-/// f cos L w / (pick pdf) if the shadow ray to infinity escapes, w the power heuristic against the
-/// cosine sample under `mis` (1 under `light`).
-vec3 envDirectLight(vec3 xo, vec3 ns, vec3 albedo, vec2 u, float pick, inout uint rays, inout uint passes) {
-    if (!envOn()) return vec3(0.0f);
-    float pdf;
-    vec3 dir = sampleEnv(ns, u, pdf, passes);
-    float cosL = dot(dir, ns);
-    if (!(pdf > 0.0f) || !(cosL > 0.0f)) return vec3(0.0f);
-    vec3 le = envRadiance(dir);
-    if (!(max(le.x, max(le.y, le.z)) > 0.0f)) return vec3(0.0f);
-    rays++;
-    if (traceAny(xo, dir, 0.0f, VKP_FAR, passes)) return vec3(0.0f);
-    float pl = pick * pdf;
-    float w = (SAMPLER == SAMPLER_MIS) ? powerHeuristic(pl, pdfCosineHemisphere(cosL)) : 1.0f;
-    return albedo * VKP_INV_PI * cosL * le * (w / pl);
+/// The environment as a light for next-event estimation from a vertex with normal n: a direction
+/// (sampleEnv) with its radiance and pdf (without the pick probability), the shadow ray towards
+/// infinity from the offset point xo. pdf 0: no sample.
+LightRay sampleEnvironmentLight(vec3 n, vec3 xo, vec2 u, inout uint passes) {
+    LightRay r;
+    r.dir = sampleEnv(n, u, r.pdf, passes);
+    r.le = (r.pdf > 0.0f) ? envRadiance(r.dir) : vec3(0.0f);
+    r.shadowDir = r.dir;
+    r.shadowLength = VKP_FAR;
+    return r;
 }
 
-/// Radiance added by a ray escaping along d: under `mis` weighted against the environment sample
-/// that could have found it from the previous vertex (normal prevN; prevBsdfPdf > 0: a BSDF
-/// sample; 0: camera or specular, counted fully); under `light`, nothing after a lambertian vertex
-/// that did next-event estimation (countEmission false), weighted as under mis after a MAT_PBR one.
+/// Radiance added by a ray escaping along d, if the path counts what its rays find (countEmission:
+/// false after a vertex whose next-event estimation already counted it, the `light` sampler at a
+/// non-glossy BSDF): under `light` and `mis` weighted against the environment sample that could have
+/// found it from the previous vertex (normal prevN; prevBsdfPdf > 0: a BSDF sample; 0: the camera
+/// or a delta lobe, counted fully), the power heuristic (Veach 1997).
 vec3 envEscaped(vec3 d, vec3 prevN, float prevBsdfPdf, bool countEmission) {
-    if (!envOn()) return vec3(0.0f);
-    // `light` after a MAT_PBR vertex (countEmission and prevBsdfPdf set: lib/scatter_pbr.glsl)
-    // weights like mis; after a lambertian vertex it counts nothing (countEmission false).
-    if (SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && countEmission)) {
-        float w = (prevBsdfPdf > 0.0f) ? powerHeuristic(prevBsdfPdf, envPickProb() * pdfEnv(d, prevN)) : 1.0f;
-        return envRadiance(d) * w;
-    }
-    return countEmission ? envRadiance(d) : vec3(0.0f);
+    if (!envOn() || !countEmission) return vec3(0.0f);
+    bool weighted = SAMPLER == SAMPLER_MIS || SAMPLER == SAMPLER_LIGHT;
+    float w = (weighted && prevBsdfPdf > 0.0f) ? powerHeuristic(prevBsdfPdf, envPickProb() * pdfEnv(d, prevN)) : 1.0f;
+    return envRadiance(d) * w;
 }
 
 /// Number of entries of the book mixture's uniformly picked light list: the sampled objects and,

@@ -1,8 +1,8 @@
 // Surface attributes of glTF mesh triangles at a hit: UVs (TEXCOORD_0, _1), interpolated shading normal,
 // normal map, and the textures of MAT_PBR materials. Compiled in only for scenes that need it
-// (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES; host/render/features.cpp). Included by pathtrace.comp.
+// (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES, ...: lib/spec_constants.glsl). Included by pathtrace.comp.
 //
-// Buffers (host/render/texture_pack.h; binding numbers must match host/render/renderer.cpp):
+// Buffers (host/render/texture_pack.h; declared in lib/bindings.glsl):
 //   uAttributes (RGBA32UI): 8 texels per BVH primitive: (uv0, uv1) | (uv2, flags, uv1At) | n0 | n1 |
 //                           n2 | t0 | t1 | t2 (TEXCOORD_0 of the corners; flags: TriangleVertices::
 //                           kHas*; zeros for other primitives); after all of them, for triangles
@@ -16,36 +16,16 @@
 // Shading normals: the interpolated NORMAL (and the normal map) only orient the BRDF's frame. They
 // are turned to the side of the geometric normal the ray arrived on, and when the viewer would be
 // below the shading hemisphere the geometric normal is used instead. Directions on the other side
-// of the geometric surface than the viewer get f = 0 (lib/scatter_pbr.glsl), so no light leaks
+// of the geometric surface than the viewer get f = 0 (shared/bsdf.h), so no light leaks
 // through a surface whose shading normal leans over its horizon.
 #ifndef VKP_SURFACE_GLSL
 #define VKP_SURFACE_GLSL
 #include "lib/bindings.glsl"
 #include "shared/intersect.h"
 
-layout(constant_id = 13) const bool HAS_VERTEX_ATTRIBUTES = true;  // UVs and shading normals of mesh triangles
-layout(constant_id = 14) const bool HAS_TEXTURES = true;           // materials read textures
-// ... and some MAT_PBR material reads a KHR_materials_specular texture (specularTexture,
-// specularColorTexture) or a KHR_materials_transmission transmissionTexture: their three lookups
-// run at every PBR hit of a variant that has them.
-layout(constant_id = 23) const bool HAS_EXTENSION_TEXTURES = true;
-// ... and some texture slot reads TEXCOORD_1 (textureInfo.texCoord 1): its UVs are fetched at
-// every textured hit and each lookup picks its set.
-layout(constant_id = 24) const bool HAS_TEXCOORD1 = true;
-
-layout(set = 0, binding = 12) uniform usamplerBuffer uAttributes;
-layout(set = 0, binding = 13) uniform usamplerBuffer uTexInfo;
-layout(set = 0, binding = 14) uniform usamplerBuffer uTexels;
-
 #define VKP_TEXEL_FETCH(i) texelFetch(uTexels, int(i)).x
 #include "shared/texture_sample.h"
 #include "shared/texture_record.h"
-
-const uint ATTR_TEXELS = 8u;
-const uint ATTR_HAS_NORMAL = 1u;  // TriangleVertices flags (host/scene/scene.h)
-const uint ATTR_HAS_UV = 2u;
-const uint ATTR_HAS_TANGENT = 4u;
-const uint ATTR_HAS_UV1 = 8u;  // TEXCOORD_1: its 2-texel record at the texel in the record's second w
 
 /// TEXCOORD_1 at surface parameters ab of the primitive whose attribute record's second texel is
 /// a1 (fallback where it has none, or in variants without HAS_TEXCOORD1).

@@ -1,20 +1,17 @@
 // GPU data layout: the one declaration of every struct the host uploads and the kernels read.
 // Included by C++ (host/, static_asserts in host/render/gpu_layout_check.cpp) and by GLSL.
 // Large arrays live in texel buffers (RGBA32UI, one texel = one vec4/uvec4 member); the small
-// per-frame block is a uniform buffer (std140). See ../shared/DESIGN.md for why.
+// per-frame block is a uniform buffer (std140). See docs/design.md for why. The kinds and flags
+// stored in these structs (PRIM_*, MAT_*, MATF_*) are defined in shared/kinds.h.
 #ifndef VKP_GPU_TYPES_H
 #define VKP_GPU_TYPES_H
 #include "glsl_compat.h"
+#include "kinds.h"
 
 VKP_BEGIN
 
 // ---- Primitives (3 texels, 48 bytes) --------------------------------------------------------
-// Kinds stored in the low 2 bits of the header word.
-const uint PRIM_SPHERE = 0u;
-const uint PRIM_QUAD = 1u;      // parallelogram Q + a u + b v, a,b in [0,1]
-const uint PRIM_TRIANGLE = 2u;  // v0 + a (v1 - v0) + b (v2 - v0), a,b >= 0, a + b <= 1
-const uint PRIM_INSTANCE = 3u;  // top level of a two-level BVH: an instance of a mesh (shared/instance.h)
-// Header word (p0.w as bits): kind | (material << 2). Material indices < 2^30. PRIM_INSTANCE:
+// Header word (p0.w as bits): kind (PRIM_*) | (material << 2). Material indices < 2^30. PRIM_INSTANCE:
 // kind | (instance index << 2), every coordinate NaN (shared/instance.h).
 // p0.xyz: sphere centre | quad Q | triangle v0        (world units)
 // p1.xyz: -             | quad u | triangle v1; p1.w: sphere radius (else 0)
@@ -44,22 +41,13 @@ const uint GPU_NODE_TEXELS = 4u;
 const uint GPU_NODE_EMPTY = 0xffffffffu;
 
 // ---- Materials (4 texels) ----------------------------------------------------------------------
-const uint MAT_LAMBERTIAN = 0u;
-const uint MAT_METAL = 1u;
-const uint MAT_DIELECTRIC = 2u;
-const uint MAT_DIFFUSE_LIGHT = 3u;
-const uint MAT_PBR = 4u;  // glTF metallic-roughness BRDF (shared/microfacet.h)
-// Flag bits above the type (bits 0-3 hold the type).
-const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
-const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
-const uint MATF_EMITS = 64u;          // emit != 0
-// m0.xyz: albedo (linear RGB; pbr: baseColorFactor), m0.w: bits of type | flags
+// m0.xyz: albedo (linear RGB; pbr: baseColorFactor), m0.w: bits of type (MAT_*) | flags (MATF_*)
 // m1.xyz: emitted radiance (linear RGB, W sr^-1 m^-2 in scene units), m1.w: fuzz (metal) or ior
 // m2 (pbr only): xyz = KHR_materials_specular specularColorFactor, w = specularFactor
 // m3 (pbr only): x = metallicFactor, y = roughnessFactor, z = KHR_materials_transmission
 //    transmissionFactor when a transmissionTexture decides per hit (host transmissionTextured),
 //    else 0; w = KHR_materials_ior ior
-// The kernel fetches m2 and m3 only in variants with HAS_PBR (shaders/lib/bindings.glsl).
+// The kernel fetches m2 and m3 only in variants with MAT_PBR (shaders/lib/bindings.glsl).
 struct GpuMaterial {
     vec4 m0;
     vec4 m1;

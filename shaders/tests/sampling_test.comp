@@ -52,7 +52,7 @@
 //                 out1.z = ggxD(normalize(v + l), alpha) (0 when v + l = 0)
 // 19 LIGHT_PICK   in0.x = u, in0.y = bits of the light count n, in0.z = bits of the item index t
 //                 where the table starts: item t + j holds light j's GpuLight in its in0
-//                 (light_pick.h alias pick, as scene_lights.glsl pickLightPower does it)
+//                 (light_pick.h alias pick, as lib/lights.glsl pickLightPower does it)
 //                 out0.x = bits of the picked light, out0.y = the probability its entry reports
 // 20 SPH_TRI_LIGHT inputs as 9, in2.w = minSize (triangle_sampling.h: solid angle, area fallback)
 //                 out0 = (dir, dist), out1.x = pdf, out1.y = pdfTriangleLightSolidAngle(dir),
@@ -72,6 +72,7 @@
 #include "shared/microfacet.h"
 #include "shared/light_pick.h"
 #include "shared/triangle_sampling.h"
+#include "tests/sampling_routines.h"  // the routine ids (R_*), shared with tests/gpu/sampling_kernel.h
 
 layout(local_size_x = 64) in;
 
@@ -84,29 +85,6 @@ layout(push_constant) uniform Push {
     uint routine;
     uint count;
 } pc;
-
-const uint R_RNG = 0u;
-const uint R_ONB = 1u;
-const uint R_COSINE_HEMI = 2u;
-const uint R_UNIFORM_SPHERE = 3u;
-const uint R_UNIFORM_HEMI = 4u;
-const uint R_UNIFORM_CONE = 5u;
-const uint R_UNIFORM_DISK = 6u;
-const uint R_UNIFORM_BALL = 7u;
-const uint R_QUAD_LIGHT = 8u;
-const uint R_TRI_LIGHT = 9u;
-const uint R_SPHERE_LIGHT = 10u;
-const uint R_LAMBERTIAN = 11u;
-const uint R_METAL = 12u;
-const uint R_DIELECTRIC = 13u;
-const uint R_FRESNEL = 14u;
-const uint R_RECT_LIGHT = 15u;
-const uint R_GGX_VNDF = 16u;
-const uint R_GLTF_SAMPLE = 17u;
-const uint R_GLTF_EVAL = 18u;
-const uint R_LIGHT_PICK = 19u;
-const uint R_SPH_TRI_LIGHT = 20u;
-const uint R_SOBOL = 21u;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

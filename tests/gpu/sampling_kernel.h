@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "tests/sampling_routines.h"
 #include "vk/device.h"
 
 namespace vkp::test::sampling {
@@ -22,9 +23,13 @@ using glm::vec4;
 
 /// Routine ids of sampling_test.comp (push constant `routine`).
 enum Routine : std::uint32_t {
-    kRng, kOnb, kCosineHemi, kUniformSphere, kUniformHemi, kUniformCone, kUniformDisk, kUniformBall,
-    kQuadLight, kTriLight, kSphereLight, kLambertian, kMetal, kDielectric, kFresnel, kRectLight,
-    kGgxVndf, kGltfSample, kGltfEval, kLightPick, kSphTriLight, kSobol
+    kRng = gpu::R_RNG, kOnb = gpu::R_ONB, kCosineHemi = gpu::R_COSINE_HEMI, kUniformSphere = gpu::R_UNIFORM_SPHERE,
+    kUniformHemi = gpu::R_UNIFORM_HEMI, kUniformCone = gpu::R_UNIFORM_CONE, kUniformDisk = gpu::R_UNIFORM_DISK,
+    kUniformBall = gpu::R_UNIFORM_BALL, kQuadLight = gpu::R_QUAD_LIGHT, kTriLight = gpu::R_TRI_LIGHT,
+    kSphereLight = gpu::R_SPHERE_LIGHT, kLambertian = gpu::R_LAMBERTIAN, kMetal = gpu::R_METAL,
+    kDielectric = gpu::R_DIELECTRIC, kFresnel = gpu::R_FRESNEL, kRectLight = gpu::R_RECT_LIGHT,
+    kGgxVndf = gpu::R_GGX_VNDF, kGltfSample = gpu::R_GLTF_SAMPLE, kGltfEval = gpu::R_GLTF_EVAL,
+    kLightPick = gpu::R_LIGHT_PICK, kSphTriLight = gpu::R_SPH_TRI_LIGHT, kSobol = gpu::R_SOBOL
 };
 
 /// Inputs in0..in3 of one item (binding 0: four vec4 per item).

@@ -1,4 +1,4 @@
-// The glTF metallic-roughness vertex of the kernel (MAT_PBR, shaders/lib/scatter_pbr.glsl) on the
+// The glTF metallic-roughness vertex of the kernel (MAT_PBR, shaders/shared/bsdf.h) on the
 // device, every sampler (label gpu):
 //  1. Furnace: a PBR sphere under a uniform background of radiance 1 and nothing else. Light leaving
 //     a convex object never returns to it, so a sample of a sphere pixel is the weight of ONE

@@ -279,7 +279,7 @@ TEST(GpuSampling, SphereLightMatchesHost) {
 }  // namespace
 // Lights picked by power on the device (issue 5: "the probability the shader reports for a light
 // equals the probability with which it is picked", pbrt's test): the GLSL build of the alias pick
-// (light_pick.h, as scene_lights.glsl's pickLightPower uses it) on a table built by the host
+// (light_pick.h, as lib/lights.glsl's pickLightPower uses it) on a table built by the host
 // (render/light_table.cpp) for 8 lights of very different power, one of them 0. (a) Every pick
 // equals the C++ build's for the same u; (b) the frequencies of 200k device picks match the
 // probabilities the picked entries report: chi-square at statsAlpha() (the stats suite's Sidak

@@ -7,6 +7,7 @@
 
 #include "render/features.h"
 #include "render/texture_pack.h"
+#include "shared/kernel_interface.h"
 #include "scene/gltf.h"
 #include "test_paths.h"
 
@@ -48,11 +49,11 @@ TEST(TexturePack, SpecularTexturesFillTheirSlotsAndTheirVariant) {
     EXPECT_TRUE(sceneHasTextures(scene));
     EXPECT_TRUE(sceneHasExtensionTextures(scene));
     EXPECT_FALSE(sceneHasExtensionTextures(texturesScene()));  // base colour, metallicRoughness, normal only
-    // The variant: constant_id 23 (HAS_EXTENSION_TEXTURES) on for this scene only.
+    // The variant: HAS_EXTENSION_TEXTURES on for this scene only.
     const std::vector<std::uint32_t> on = sceneFeatures(scene, Sampler::Mis).specConstants();
-    ASSERT_EQ(on.size(), 25u);
-    EXPECT_EQ(on[23], 1u);
-    EXPECT_EQ(sceneFeatures(texturesScene(), Sampler::Mis).specConstants().at(23), 0u);
+    ASSERT_EQ(on.size(), std::size_t(VKP_SPEC_COUNT));
+    EXPECT_EQ(on[VKP_SPEC_HAS_EXTENSION_TEXTURES], 1u);
+    EXPECT_EQ(sceneFeatures(texturesScene(), Sampler::Mis).specConstants().at(VKP_SPEC_HAS_EXTENSION_TEXTURES), 0u);
     EXPECT_NE(sceneFeatures(scene, Sampler::Mis).name().find(" extension-textures"), std::string::npos);
 }
 

@@ -1,13 +1,20 @@
-// The list of sampled objects ("lights": emitters and objects marked "sample": true).
-// The book's mixture picks one uniformly (hittable_list::random); next-event estimation picks an
-// emitter in proportion to its power (shared/light_pick.h). Pdfs are in solid angle at the
-// shading point x.
-#ifndef VKP_SCENE_LIGHTS_GLSL
-#define VKP_SCENE_LIGHTS_GLSL
+// The scene's emitters behind one interface (pbrt-v4's Light: SampleLi, PDF_Li, L): what a surface
+// emits, one sampled point on a light with its radiance and shadow ray (sampleEmitter), and the
+// density of reaching a light by a given direction (pdfLightPrim). The light list
+// holds every sampled object (emitters and objects marked "sample": true): the book's mixture picks
+// one uniformly (hittable_list::random); next-event estimation picks an emitter in proportion to its
+// power (shared/light_pick.h). The environment is the other light (lib/environment.glsl). Pdfs are
+// in solid angle at the shading point x. A light kind is a primitive kind: its sampling triple
+// lives in shared/light_sampling.h, rect_sampling.h or triangle_sampling.h, and the dispatch on it
+// is sampleLightPrim / pdfLightPrim below (docs/extending.md).
+#ifndef VKP_LIGHTS_GLSL
+#define VKP_LIGHTS_GLSL
 #include "lib/bindings.glsl"
+#include "lib/surface.glsl"
 #include "shared/intersect.h"
 #include "shared/light_pick.h"
 #include "shared/light_sampling.h"
+#include "shared/ray_offset.h"
 #include "shared/rect_sampling.h"
 #include "shared/triangle_sampling.h"
 
@@ -78,6 +85,55 @@ uint pickLightPower(float u, out float pickPdf) {
 
 /// Probability that pickLightPower picks light li.
 float pickPdfPower(uint li) { return fetchLight(li).l0.y; }
+
+/// Radiance emitted by material m towards direction -d at a surface with geometric normal n
+/// (either orientation): diffuse_light emits from its front only unless two-sided; an emitting
+/// lambertian (or glTF emitter that is doubleSided) from both faces.
+vec3 emitted(GpuMaterial m, vec3 d, vec3 n) {
+    uint mflags = floatBitsToUint(m.m0.w);
+    if (!HAS_EMITTERS || (mflags & MATF_EMITS) == 0u) return vec3(0.0f);
+    bool front = dot(d, n) < 0.0f;
+    bool oneSided = (mflags & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT && (mflags & MATF_TWO_SIDED) == 0u;
+    return (front || !oneSided) ? vec3(m.m1.x, m.m1.y, m.m1.z) : vec3(0.0f);
+}
+
+/// A sampled point on a light as seen from a shading point: what next-event estimation needs.
+struct LightRay {
+    vec3 dir;            ///< unit direction towards the light point (from the unoffset point x)
+    vec3 le;             ///< radiance arriving from it along -dir (0: nothing to trace)
+    float pdf;           ///< solid-angle density of dir, without the pick probability (0: no sample)
+    vec3 shadowDir;      ///< the shadow ray from the offset point xo ...
+    float shadowLength;  ///< ... and its length (world units; VKP_FAR: to infinity)
+};
+
+/// A point on light li (light-list index), sampled from the hit x (offset origin xo) on primitive
+/// `prim` (p) with u in [0,1)^2: direction, emitted radiance (emissive textures applied), pdf and
+/// the shadow ray between the two offset points (shared/ray_offset.h). A flat light cannot light
+/// itself: no sample of it from a point on it (rounding may put the hit point on either side of
+/// its plane); a sphere can (from inside).
+LightRay sampleEmitter(uint li, vec3 x, vec3 xo, uint prim, GpuPrim p, vec2 u) {
+    LightRay r;
+    uint lprim = floatBitsToUint(fetchLight(li).l0.x);
+    GpuPrim lp = fetchPrim(lprim);
+    LightSample ls = sampleLightPrim(lp, x, u);
+    bool self = lprim == prim && primKind(p) != PRIM_SPHERE;
+    r.dir = ls.dir;
+    r.pdf = self ? 0.0f : ls.pdf;
+    r.le = vec3(0.0f);
+    r.shadowDir = ls.dir;
+    r.shadowLength = 0.0f;
+    if (r.pdf > 0.0f) {
+        GpuMaterial lm = fetchMaterial(primMaterial(lp));
+        vec3 lx = x + ls.dist * ls.dir;
+        emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
+        vec3 nl = primNormal(lp, lx);
+        r.le = emitted(lm, ls.dir, nl);
+        vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl));  // between offset end points
+        r.shadowDir = vec3(sr.x, sr.y, sr.z);
+        r.shadowLength = sr.w;
+    }
+    return r;
+}
 
 /// The book's light pdf: the average of every sampled object's pdf for direction d
 /// (hittable_list::pdf_value). Costs one loop over the light list.

@@ -1,0 +1,74 @@
+// Next-event estimation: the one direct-lighting routine every material calls ("Ray Tracing: The
+// Rest of Your Life", "Sampling Lights Directly"; multiple importance sampling, Veach 1997 ch. 9),
+// and the MIS weight of a light that a BSDF-sampled ray finds instead. Used by the `light` and
+// `mis` samplers at every non-delta vertex (shared/bsdf.h).
+//
+// One light sample per vertex: the environment with probability pEnv (envPickProb, 0 without one,
+// 1 without emitters), else one emitter of the light list picked in proportion to its power
+// (probability (1 - pEnv) x its share, shared/light_pick.h), one point on it (lib/lights.glsl), one
+// shadow ray. Under `mis` (and under `light` at a glossy BSDF, bsdfIsGlossy) the sample is weighted
+// by the power heuristic against the BSDF's density of the same direction; the BSDF's own sample
+// then counts the light it hits with the complementary weight (foundLightWeight). Under `light` at
+// other BSDFs the weight is 1 and the path ignores the lights its BSDF samples find.
+#ifndef VKP_DIRECT_LIGHT_GLSL
+#define VKP_DIRECT_LIGHT_GLSL
+#include "lib/bindings.glsl"
+#include "lib/environment.glsl"
+#include "lib/lights.glsl"
+#include "lib/traverse.glsl"
+#include "shared/bsdf.h"
+#include "shared/light_pick.h"
+
+/// Next-event estimation is on for this sampler and this scene (something to sample).
+bool neeOn() { return (SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn()); }
+
+/// The light sample is weighted by MIS against the BSDF at this vertex.
+bool neeWeighted(Bsdf b) { return SAMPLER == SAMPLER_MIS || bsdfIsGlossy(b); }
+
+/// One light sample's contribution beta f cos Le w / p at the non-delta vertex x (BSDF b, offset
+/// origin xo, on primitive prim / p), with uStrategy in [0,1) choosing the light (the vertex's
+/// strategy number) and uLight in [0,1)^2 the point on it; 0 when the sample is occluded, finds no
+/// light or leaves below the surface. Counts the shadow ray in rays.
+vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float uStrategy, vec2 uLight,
+                 inout uint rays, inout uint passes) {
+    float pEnv = envPickProb();
+    LightRay r;
+    float pick;
+    if (uStrategy < pEnv) {
+        r = sampleEnvironmentLight(b.n, xo, uLight, passes);
+        pick = pEnv;
+    } else {
+        float uPick = min((uStrategy - pEnv) / (1.0f - pEnv), 0.99999994f);
+        uint li = pickLightPower(uPick, pick);
+        pick *= 1.0f - pEnv;
+        r = sampleEmitter(li, x, xo, prim, p, uLight);
+    }
+    // No shadow ray towards nothing, towards a light's back or below the surface.
+    if (!(r.pdf > 0.0f) || !(bsdfCosine(b, r.dir) > 0.0f) || !(max(r.le.x, max(r.le.y, r.le.z)) > 0.0f))
+        return vec3(0.0f);
+    rays++;
+    if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);
+    float pl = r.pdf * pick;
+    float w = neeWeighted(b) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
+    return evalBsdf(b, beta, r.dir) * r.le * (w / pl);
+}
+
+/// Density with which next-event estimation reaches the emitting primitive p from x along d (its
+/// pick probability included): for the MIS weight of a BSDF-sampled ray that hit it.
+float emitterHitPdf(GpuPrim p, vec3 x, vec3 d) {
+    int li = primLight(p);
+    if (li < 0) return 0.0f;
+    return pickPdfPower(uint(li)) * (1.0f - envPickProb()) * pdfLightPrim(p, x, d);
+}
+
+/// MIS weight of an emitter that a ray sampled from a BSDF with density prevBsdfPdf found (0: the
+/// camera ray or a delta lobe, counted fully), lightPdf the density with which next-event
+/// estimation would have sampled it (emitterHitPdf). 1 for the samplers without next-event
+/// estimation. The `light` sampler needs it only where a glossy BSDF occurs (VKP_HAS_GLOSSY_BSDF).
+float foundLightWeight(float prevBsdfPdf, GpuPrim p, vec3 prevX, vec3 d) {
+    bool weighted = SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF);
+    if (!weighted || !(prevBsdfPdf > 0.0f) || primLight(p) < 0) return 1.0f;
+    return powerHeuristic(prevBsdfPdf, emitterHitPdf(p, prevX, d));
+}
+
+#endif

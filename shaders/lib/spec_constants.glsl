@@ -1,0 +1,52 @@
+// Every specialization constant of the path-tracing kernel, in id order (ids: shared/kernel_interface.h;
+// the host's values: host/render/features.cpp, Features::specTable). A false constant removes the
+// code it guards from the pipeline, which on lavapipe is the only way to make it free
+// (docs/design.md). The defaults are the `full` variant: everything compiled in.
+#ifndef VKP_SPEC_CONSTANTS_GLSL
+#define VKP_SPEC_CONSTANTS_GLSL
+#include "shared/kernel_interface.h"
+#include "shared/kinds.h"
+
+layout(constant_id = VKP_SPEC_SHAPES) const uint SHAPES = 0xffffffffu;        // bit PRIM_* per kind in the BVH
+layout(constant_id = VKP_SPEC_MATERIALS) const uint MATERIALS = 0xffffffffu;  // bit MAT_* per type used
+layout(constant_id = VKP_SPEC_HAS_EMITTERS) const bool HAS_EMITTERS = true;
+layout(constant_id = VKP_SPEC_LIGHTS) const uint LIGHTS = 0xffffffffu;        // bit PRIM_* per kind in the light list
+layout(constant_id = VKP_SPEC_SAMPLER) const uint SAMPLER = 2u;               // SAMPLER_* (shared/kinds.h)
+layout(constant_id = VKP_SPEC_SEQUENCE) const uint SEQUENCE = 1u;             // SEQUENCE_* (shared/sample_stream.h)
+// Next-event estimation samples quads and triangles in solid angle (else in area) from points
+// where the light's apparent size (area / squared distance to its centre, sr) is at least
+// SOLID_ANGLE_MIN_SIZE (shared/rect_sampling.h apparentSize; 0: everywhere).
+layout(constant_id = VKP_SPEC_SOLID_ANGLE_LIGHTS) const bool SOLID_ANGLE_LIGHTS = true;
+layout(constant_id = VKP_SPEC_SOLID_ANGLE_MIN_SIZE) const float SOLID_ANGLE_MIN_SIZE = 0.0f;
+layout(constant_id = VKP_SPEC_HAS_DEFOCUS) const bool HAS_DEFOCUS = true;
+layout(constant_id = VKP_SPEC_HAS_ENV) const bool HAS_ENV = true;          // escaping rays see radiance (lib/environment.glsl)
+layout(constant_id = VKP_SPEC_HAS_ENV_MAP) const bool HAS_ENV_MAP = true;  // ... from a map (else the constant background)
+layout(constant_id = VKP_SPEC_HAS_VERTEX_ATTRIBUTES) const bool HAS_VERTEX_ATTRIBUTES = true;  // lib/surface.glsl
+layout(constant_id = VKP_SPEC_HAS_TEXTURES) const bool HAS_TEXTURES = true;
+// ... and some MAT_PBR material reads a KHR_materials_specular texture (specularTexture,
+// specularColorTexture) or a KHR_materials_transmission transmissionTexture: their three lookups
+// run at every PBR hit of a variant that has them.
+layout(constant_id = VKP_SPEC_HAS_EXTENSION_TEXTURES) const bool HAS_EXTENSION_TEXTURES = true;
+// ... and some texture slot reads TEXCOORD_1: its UVs are fetched at every textured hit.
+layout(constant_id = VKP_SPEC_HAS_TEXCOORD1) const bool HAS_TEXCOORD1 = true;
+layout(constant_id = VKP_SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;          // lib/alpha.glsl
+layout(constant_id = VKP_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // shared/instance.h
+// Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
+       local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;
+
+// ---- Derived: what the masks above compile in (specialization-constant expressions, folded when
+// the pipeline is created, so a false one removes its code as a plain constant does).
+const bool HAS_SPHERES = (SHAPES & (1u << PRIM_SPHERE)) != 0u;
+const bool HAS_PARALLELOGRAMS = (SHAPES & ((1u << PRIM_QUAD) | (1u << PRIM_TRIANGLE))) != 0u;  // quads and triangles
+const bool HAS_LAMBERTIAN = (MATERIALS & (1u << MAT_LAMBERTIAN)) != 0u;
+const bool HAS_METAL = (MATERIALS & (1u << MAT_METAL)) != 0u;
+const bool HAS_DIELECTRIC = (MATERIALS & (1u << MAT_DIELECTRIC)) != 0u;
+const bool HAS_PBR = (MATERIALS & (1u << MAT_PBR)) != 0u;  // glTF metallic-roughness materials
+// Kinds in the light list, compiled apart: on lavapipe every compiled-in light kind's sampling code
+// runs at every vertex (docs/design.md).
+const bool HAS_SPHERE_LIGHTS = (LIGHTS & (1u << PRIM_SPHERE)) != 0u;
+const bool HAS_QUAD_LIGHTS = (LIGHTS & (1u << PRIM_QUAD)) != 0u;
+const bool HAS_TRIANGLE_LIGHTS = (LIGHTS & (1u << PRIM_TRIANGLE)) != 0u;
+
+#endif

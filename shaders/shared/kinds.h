@@ -1,0 +1,66 @@
+// Every enumeration that the host and the kernels share, defined once here for both languages:
+// primitive kinds, material types and flags, samplers, sample sequences, alpha modes and the
+// vertex-attribute flags. The host's enums are defined from these values (host/scene/scene.h
+// MaterialType, ShapeType, AlphaMode, TriangleVertices flags; host/render/features.h Sampler,
+// Sequence), so the two sides cannot drift apart.
+#ifndef VKP_KINDS_H
+#define VKP_KINDS_H
+#include "glsl_compat.h"
+
+VKP_BEGIN
+
+// ---- Primitive kinds: the low 2 bits of a GpuPrim's header word (shared/gpu_types.h) ----------
+const uint PRIM_SPHERE = 0u;
+const uint PRIM_QUAD = 1u;      // parallelogram Q + a u + b v, a,b in [0,1]
+const uint PRIM_TRIANGLE = 2u;  // v0 + a (v1 - v0) + b (v2 - v0), a,b >= 0, a + b <= 1
+const uint PRIM_INSTANCE = 3u;  // top level of a two-level BVH: an instance of a mesh (shared/instance.h)
+const uint PRIM_KIND_COUNT = 4u;
+
+// ---- Kernel material types: the low 4 bits of GpuMaterial::m0.w --------------------------------
+const uint MAT_LAMBERTIAN = 0u;
+const uint MAT_METAL = 1u;
+const uint MAT_DIELECTRIC = 2u;
+const uint MAT_DIFFUSE_LIGHT = 3u;
+const uint MAT_PBR = 4u;  // glTF metallic-roughness BRDF (shared/microfacet.h)
+const uint MAT_TYPE_COUNT = 5u;
+const uint MAT_TYPE_MASK = 15u;  // the type's bits of the flags word
+// Flag bits above the type.
+const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
+const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
+const uint MATF_EMITS = 64u;          // emit != 0
+
+// ---- How a diffuse vertex is sampled (specialization constant SAMPLER) -------------------------
+const uint SAMPLER_BSDF = 0u;     // BSDF sampling only; emission counted where rays hit it
+const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
+const uint SAMPLER_MIXTURE = 2u;  // the book: 0.5 BSDF + 0.5 lights (uniform pick), one direction
+const uint SAMPLER_MIS = 3u;      // light sample + BSDF sample, power heuristic (Veach 1997)
+
+// ---- Where a sample's random numbers come from (specialization constant SEQUENCE) --------------
+const uint SEQUENCE_RANDOM = 0u;  // independent hashed random numbers per dimension (shared/rng.h)
+const uint SEQUENCE_SOBOL = 1u;   // Owen-scrambled Sobol' points, padded (shared/sobol.h)
+
+// ---- glTF alphaMode (the material texture record's alpha texel, shared/texture_record.h) -------
+const uint ALPHA_OPAQUE = 0u;
+const uint ALPHA_MASK = 1u;
+const uint ALPHA_BLEND = 2u;
+
+// ---- Vertex-attribute records (lib/surface.glsl, host/render/texture_pack.h) -------------------
+const uint ATTR_TEXELS = 8u;       // texels per primitive
+const uint ATTR_HAS_NORMAL = 1u;   // else shade with the geometric (flat) normal
+const uint ATTR_HAS_UV = 2u;       // TEXCOORD_0 (else UV = (0,0))
+const uint ATTR_HAS_TANGENT = 4u;  // from the file, or generated for a normal map
+const uint ATTR_HAS_UV1 = 8u;      // TEXCOORD_1: its 2-texel record at the texel in the record's second w
+
+VKP_END
+
+#ifdef __cplusplus
+namespace vkp::gpu {
+/// Names of the kinds above, indexed by their value (variant names, messages).
+inline constexpr const char* kPrimKindNames[] = {"sphere", "quad", "triangle", "instance"};
+inline constexpr const char* kMaterialTypeNames[] = {"lambertian", "metal", "dielectric", "diffuse_light", "pbr"};
+static_assert(sizeof(kPrimKindNames) / sizeof(kPrimKindNames[0]) == PRIM_KIND_COUNT, "a name per primitive kind");
+static_assert(sizeof(kMaterialTypeNames) / sizeof(kMaterialTypeNames[0]) == MAT_TYPE_COUNT, "a name per material type");
+}  // namespace vkp::gpu
+#endif
+
+#endif
