@@ -1,4 +1,4 @@
-// The Blender-exported Cornell box (../shared/scenes/blender-cornell-classic/cornell-rtiow.gltf:
+// The Blender-exported Cornell box (scenes/blender-cornell-classic/cornell-rtiow.gltf, README.md there:
 // glTF PBR walls with roughness 1, metallic 0 and the default specular layer, F0 = 0.04) against
 // the all-Lambertian scenes/cornell-classic.json with the same geometry, light and camera
 // (label gpu; both rendered at 24 x 24 with mis):
@@ -49,7 +49,8 @@ constexpr std::uint32_t kSppLayer = 4096;
 /// box's bounces). Grazing views turned out to matter more (file comment).
 constexpr double kSpecularBound = 0.05;
 
-fs::path blenderCornell() { return sharedScenesDir() / "blender-cornell-classic" / "cornell-rtiow.gltf"; }
+/// The glTF file; part of the repository, so a missing file fails the tests (BlenderCornellRender).
+fs::path blenderCornell() { return scenesDir() / "blender-cornell-classic" / "cornell-rtiow.gltf"; }
 
 Scene prepare(Scene s, std::uint32_t seed) {
     s.camera.width = s.camera.height = kSize;
@@ -87,7 +88,7 @@ Estimate difference(const PixelStats& a, const PixelStats& b, const std::vector<
 class BlenderCornellRender : public ::testing::Test {
 protected:
     void SetUp() override {
-        if (!fs::exists(blenderCornell())) GTEST_SKIP() << "no " << blenderCornell();
+        ASSERT_TRUE(fs::exists(blenderCornell())) << blenderCornell() << " is missing";
     }
 };
 
