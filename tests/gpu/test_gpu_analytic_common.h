@@ -11,10 +11,10 @@
 // (Higham, "Accuracy and Stability of Numerical Algorithms", sec. 4.2), kept as a generous bound
 // for pixels whose samples are all equal (zero variance) although the device's sums are now
 // double-float pairs (shaders/shared/compensated_sum.h) and err far less.
-// z_crit comes from a suite budget: a test executable declares that it performs at most B z-tests
-// at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B) (Sidak 1967:
-// for jointly normal statistics, correlated or not, the family-wise false-failure probability is
-// then <= alpha). The executable checks at exit that it did not exceed B.
+// z_crit comes from a suite budget (z_budget.h): a test executable declares that it performs at
+// most B z-tests at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B)
+// (Sidak 1967: for jointly normal statistics, correlated or not, the family-wise false-failure
+// probability is then <= alpha). The executable checks at exit that its tests did not exceed B.
 // The region means are averages of >= 4096 samples, so the normal approximation is adequate for
 // the tails used here (z ~ 4.4-4.6) as long as the samples are not heavy-tailed; each test says
 // why its samples are not.
@@ -38,68 +38,9 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "vk/device.h"
+#include "z_budget.h"
 
 namespace vkp::test {
-
-/// z with P(|Z| > z) = alpha for a standard normal Z (bisection on erfc; alpha in (0, 1)).
-inline double normalTwoSidedZ(double alpha) {
-    double lo = 0.0, hi = 40.0;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (std::erfc(mid / std::sqrt(2.0)) > alpha) lo = mid; else hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/// The z-test budget of one test executable (see the file comment). One global instance per
-/// executable: zBudget().
-class ZBudget {
-public:
-    /// Declares at most `tests` z-tests at family-wise false-failure probability `familyAlpha`.
-    void declare(int tests, double familyAlpha) {
-        budget_ = tests;
-        alpha_ = familyAlpha;
-        z_ = normalTwoSidedZ(1.0 - std::pow(1.0 - familyAlpha, 1.0 / tests));
-    }
-    /// The critical |z| of one test; counts it.
-    double take() {
-        ++used_;
-        return z_;
-    }
-    double z() const { return z_; }
-    int used() const { return used_; }
-    int budget() const { return budget_; }
-    double alpha() const { return alpha_; }
-    double maxAbsZ = 0.0;  ///< largest |z| seen (reported)
-
-private:
-    int budget_ = 1, used_ = 0;
-    double alpha_ = 0.01, z_ = 5.0;
-};
-inline ZBudget& zBudget() {
-    static ZBudget b;
-    return b;
-}
-
-/// gtest environment that declares the budget before the tests and checks it after them.
-class ZBudgetEnvironment : public ::testing::Environment {
-public:
-    ZBudgetEnvironment(int tests, double familyAlpha) : tests_(tests), alpha_(familyAlpha) {}
-    void SetUp() override {
-        zBudget().declare(tests_, alpha_);
-        std::printf("z-test budget: %d tests, family-wise alpha %.3g, critical |z| %.3f\n", tests_, alpha_,
-                    zBudget().z());
-    }
-    void TearDown() override {
-        std::printf("z-tests used: %d of %d, largest |z| %.2f\n", zBudget().used(), zBudget().budget(),
-                    zBudget().maxAbsZ);
-        EXPECT_LE(zBudget().used(), zBudget().budget()) << "raise the declared z-test budget";
-    }
-
-private:
-    int tests_;
-    double alpha_;
-};
 
 /// Mean of a region and the variance of that mean.
 struct Estimate {
