@@ -14,18 +14,16 @@
 namespace vkp::test {
 namespace {
 
+/// cornell-book3 at size x size pixels with mis and adaptive sampling (samples per dispatch: auto).
 TestRender makeAdaptive(VulkanDevice& dev, std::uint32_t size, double threshold, std::uint32_t minSpp) {
-    TestRender r;
-    r.scene = loadSceneJson(scenesDir() / "cornell-book3.json");
-    r.scene.camera.width = size;
-    r.scene.camera.height = size;
-    r.bvh = buildFlatBvh(r.scene);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
+    scene.camera.width = size;
+    scene.camera.height = size;
     RendererOptions o;
     o.sampler = Sampler::Mis;
     o.adaptiveThreshold = threshold;
     o.adaptiveMinSpp = minSpp;
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
-    return r;
+    return makeRender(dev, std::move(scene), o);
 }
 
 // Stopped pixels keep their sums bit for bit while the others go on, and every active pixel gets

@@ -1,6 +1,7 @@
 // Shared pieces of the accuracy tests (tests/gpu/test_gpu_analytic*.cpp, test_gpu_convergence*.cpp,
-// tests/stress): rendering a Scene held in memory, z-tests of pixel means against expected values
-// with tolerances in standard errors, and the Sidak-corrected critical value of a test suite.
+// tests/stress): z-tests of pixel means against expected values with tolerances in standard
+// errors (the Sidak-corrected critical value of a test executable: z_budget.h), closed-form
+// irradiance, and the comparison of two renders. Renders are made with render_helpers.h.
 //
 // Statistics. A pixel's mean over n samples has variance sigma^2 / n, estimated by
 // PixelSums::varianceOfMean (sample variance / n). A region (a block of pixels, or a list of
@@ -32,12 +33,10 @@
 #include <string>
 #include <vector>
 
-#include "bvh/flatten.h"
-#include "bvh/two_level.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "render_helpers.h"
 #include "scene/scene.h"
-#include "vk/device.h"
 #include "z_budget.h"
 
 namespace vkp::test {
@@ -110,52 +109,6 @@ inline ::testing::AssertionResult withinNoise(const Estimate& e, double expected
                     expected, err, zs, expected != 0 ? sd / std::abs(expected) : sd);
     if (!fails) return ::testing::AssertionSuccess() << msg.str();
     return ::testing::AssertionFailure() << msg.str();
-}
-
-/// A renderer with its scene and BVH kept alive beside it.
-struct SceneRender {
-    Scene scene;
-    FlatBvh bvh;
-    std::unique_ptr<Renderer> renderer;
-};
-
-/// Builds and uploads `scene` with renderer options `o`.
-inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, const RendererOptions& o) {
-    SceneRender r;
-    r.scene = scene;
-    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
-    return r;
-}
-
-/// Builds and uploads `scene` for `sampler`. samplesPerDispatch: see RendererOptions.
-inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sampler sampler,
-                                   std::uint32_t samplesPerDispatch = 4) {
-    RendererOptions o;
-    o.sampler = sampler;
-    o.samplesPerDispatch = samplesPerDispatch;
-    return makeSceneRender(dev, scene, o);
-}
-
-/// Renders `scene` with options `o` for spp samples and returns the sums; expects no non-finite
-/// sample and no path cut by the loop guard.
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RendererOptions& o, std::uint32_t spp,
-                            const std::string& what) {
-    SceneRender r = makeSceneRender(dev, scene, o);
-    r.renderer->addSamples(spp);
-    const RenderCounters c = r.renderer->counters();
-    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(o.sampler);
-    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(o.sampler);
-    return r.renderer->readSums();
-}
-
-/// renderSums with `sampler` and 4 samples per dispatch.
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
-                            const std::string& what) {
-    RendererOptions o;
-    o.sampler = sampler;
-    o.samplesPerDispatch = 4;
-    return renderSums(dev, scene, o, spp, what);
 }
 
 // ---- Closed-form irradiance on a plane, averaged over pixel footprints -------------------------

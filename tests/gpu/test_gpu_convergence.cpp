@@ -102,14 +102,11 @@ SamplerRun runScene(VulkanDevice& dev, const Scene& scene, Sampler sampler, std:
     SamplerRun run;
     run.sampler = sampler;
     run.seed = scene.render.seed;
-    SceneRender r;
-    r.scene = scene;
-    r.bvh = buildFlatBvh(r.scene);
     RendererOptions o;
     o.sampler = sampler;
     o.sequence = sequence;
     o.samplesPerDispatch = 4;
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
+    TestRender r = makeRender(dev, scene, o);
     const PixelSums start = r.renderer->readSums();
     PixelSums prev = start, blockStart = start;
     for (std::uint32_t done = 0; done < spp; done += kChunk) {

@@ -110,7 +110,6 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
     scene.camera.width = 21;
     scene.camera.height = 13;
-    const FlatBvh bvh = buildFlatBvh(scene);
     for (double adaptive : {0.0, 0.5}) {
         PixelSums first;
         for (const auto& [wx, wy, linear] : {std::tuple{8u, 8u, false}, std::tuple{8u, 8u, true}, std::tuple{16u, 4u, false},
@@ -123,14 +122,14 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
             o.linearTiles = linear;
             o.adaptiveThreshold = adaptive;
             o.adaptiveMinSpp = 4;
-            Renderer r(dev, scene, bvh, o);
-            r.addSamples(24);
-            const PixelSums s = r.readSums();
+            TestRender r = makeRender(dev, scene, o);
+            r.renderer->addSamples(24);
+            const PixelSums s = r.renderer->readSums();
             const std::string what = std::to_string(wx) + "x" + std::to_string(wy) + (linear ? " linear" : " scrambled") +
                                      (adaptive > 0 ? " adaptive" : "");
             if (first.sum.empty()) {
                 first = s;
-                if (adaptive > 0) EXPECT_LT(r.activePixels(), 21u * 13u) << "adaptive sampling must stop some pixels";
+                if (adaptive > 0) EXPECT_LT(r.renderer->activePixels(), 21u * 13u) << "adaptive sampling must stop some pixels";
                 continue;
             }
             ASSERT_EQ(first.sum.size(), s.sum.size());
@@ -142,7 +141,7 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     RendererOptions big;
     big.workgroupX = 64;
     big.workgroupY = 64;
-    EXPECT_THROW(Renderer(dev, scene, bvh, big), VulkanError);
+    EXPECT_THROW(makeRender(dev, scene, big), VulkanError);
 }
 
 // `--light-sampling auto` is a per-point choice between the other two: with its switch at 0 sr
@@ -155,16 +154,15 @@ TEST(GpuRender, AutoLightSamplingIsSolidAngleOrAreaPerPoint) {
     Scene scene = loadSceneJson(scenesDir() / "cornell-classic.json");
     scene.camera.width = 24;
     scene.camera.height = 24;
-    const FlatBvh bvh = buildFlatBvh(scene);
     auto render = [&](LightSampling ls, float minSize) {
         RendererOptions o;
         o.sampler = Sampler::Mis;
         o.samplesPerDispatch = 4;
         o.lightSampling = ls;
         o.solidAngleMinSize = minSize;
-        Renderer r(dev, scene, bvh, o);
-        r.addSamples(16);
-        return r.readSums();
+        TestRender r = makeRender(dev, scene, o);
+        r.renderer->addSamples(16);
+        return r.renderer->readSums();
     };
     auto same = [](const PixelSums& a, const PixelSums& b) {
         return a.sum.size() == b.sum.size() && std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0;
@@ -259,15 +257,14 @@ TEST(GpuRender, SceneVariantMatchesFullVariant) {
         Scene scene = loadSceneJson(scenesDir() / name);
         scene.camera.width = 24;
         scene.camera.height = 16;
-        const FlatBvh bvh = buildFlatBvh(scene);
         RendererOptions o;
-        Renderer variant(dev, scene, bvh, o);
+        TestRender variant = makeRender(dev, scene, o);
         o.fullVariant = true;
-        Renderer full(dev, scene, bvh, o);
-        EXPECT_NE(variant.features().name(), full.features().name());
-        variant.addSamples(4);
-        full.addSamples(4);
-        const PixelSums a = variant.readSums(), b = full.readSums();
+        TestRender full = makeRender(dev, scene, o);
+        EXPECT_NE(variant.renderer->features().name(), full.renderer->features().name());
+        variant.renderer->addSamples(4);
+        full.renderer->addSamples(4);
+        const PixelSums a = variant.renderer->readSums(), b = full.renderer->readSums();
         EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double))) << name;
     }
 }
