@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "gpu_env.h"
+#include "image_checks.h"
 #include "render/adaptive.h"
 #include "render_helpers.h"
 #include "test_paths.h"
@@ -62,6 +63,7 @@ TEST(GpuAdaptive, IndependentOfHowSamplesAreSplit) {
     for (std::uint32_t n : {7u, 30u, 1u, 50u, 12u}) b.renderer->addSamples(n);
     EXPECT_EQ(a.renderer->activeMask(), b.renderer->activeMask());
     const PixelSums sa = a.renderer->readSums(), sb = b.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "adaptive cornell-book3, 100 spp in one call"));
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(double)));
 }
 
@@ -80,6 +82,8 @@ TEST(GpuAdaptive, AgreesWithUniformSamplingWithinNoise) {
     std::printf("adaptive: %.1f spp on average, %u pixels active at 1024 spp\n", meanSpp, ad.renderer->activePixels());
     EXPECT_LT(meanSpp, 1024.0 * 0.9) << "too few pixels stopped for this test to mean anything";
     const PixelSums sa = ad.renderer->readSums(), su = un.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "cornell-book3, adaptive"));
+    EXPECT_TRUE(litAndNotConstant(su.mean(), "cornell-book3, uniform"));
     const Image ma = sa.mean(), va = sa.varianceOfMean(), mu = su.mean(), vu = su.varianceOfMean();
     double maxZ = 0;
     for (std::uint32_t by = 0; by < size; by += 8)

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "image_checks.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
 #include "render_helpers.h"
@@ -172,18 +173,32 @@ inline Estimate difference(const Estimate& a, const Estimate& b) {
     return d;
 }
 
-/// Two independent renders of the same image (size x size pixels) that must agree within noise:
-/// the whole image (printed) and every block x block square, per channel, z-test of a - b against 0
-/// (3 x (1 + (size / block)^2) tests of zBudget()). `what` names the pair in messages. Returns the
-/// whole image's mean of a per channel, for checks that the scene is lit.
-inline glm::dvec3 expectRendersAgree(const PixelStats& a, const PixelStats& b, std::uint32_t size, std::uint32_t block,
-                                     const std::string& what) {
+/// difference() of the averages of `pixels` (channel c) in two independent renders a and b.
+inline Estimate difference(const PixelStats& a, const PixelStats& b, const std::vector<Pixel>& pixels, int c) {
+    return difference(average(a, pixels, c), average(b, pixels, c));
+}
+
+/// The whole image and every block x block square of a size x size image, named for messages.
+inline std::vector<std::pair<std::string, std::vector<Pixel>>> imageAndBlocks(std::uint32_t size, std::uint32_t block) {
     std::vector<std::pair<std::string, std::vector<Pixel>>> regions = {{"image", rect(0, 0, size, size)}};
     for (std::uint32_t by = 0; by < size; by += block)
         for (std::uint32_t bx = 0; bx < size; bx += block)
             regions.push_back({"block " + std::to_string(bx) + "," + std::to_string(by), rect(bx, by, bx + block, by + block)});
+    return regions;
+}
+
+/// Two independent renders of the same image (size x size pixels), a named nameA and b nameB,
+/// that must agree within noise: both must be lit and not constant (litAndNotConstant: two black
+/// images agree), then the whole image (printed) and every block x block square, per channel,
+/// z-test of a - b against 0 (3 x (1 + (size / block)^2) tests of zBudget()). Returns the whole
+/// image's mean of a per channel, for checks that the scene is lit as brightly as it should be.
+inline glm::dvec3 expectRendersAgree(const PixelStats& a, const std::string& nameA, const PixelStats& b,
+                                     const std::string& nameB, std::uint32_t size, std::uint32_t block) {
+    EXPECT_TRUE(litAndNotConstant(a.mean, nameA));
+    EXPECT_TRUE(litAndNotConstant(b.mean, nameB));
+    const std::string what = nameA + " - " + nameB;
     glm::dvec3 imageMean(0.0);
-    for (const auto& [name, px] : regions)
+    for (const auto& [name, px] : imageAndBlocks(size, block))
         for (int c = 0; c < 3; ++c) {
             const Estimate ea = average(a, px, c), eb = average(b, px, c);
             if (name == "image") imageMean[c] = ea.mean;

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "gpu_env.h"
+#include "image_checks.h"
 #include "render_helpers.h"
 #include "test_paths.h"
 
@@ -96,6 +97,7 @@ TEST(GpuRender, BitIdenticalAcrossDispatchSplits) {
     c.renderer->addSamples(1);
     c.renderer->addSamples(5);
     const PixelSums sa = a.renderer->readSums(), sb = b.renderer->readSums(), sc = c.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "cornell-book3, 6 spp in one call"));  // identical renders of nothing prove nothing
     ASSERT_EQ(sa.sum.size(), sb.sum.size());
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(double)));
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sc.sum.data(), sa.sum.size() * sizeof(double)));
@@ -129,6 +131,7 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
                                      (adaptive > 0 ? " adaptive" : "");
             if (first.sum.empty()) {
                 first = s;
+                EXPECT_TRUE(litAndNotConstant(first.mean(), what));
                 if (adaptive > 0) EXPECT_LT(r.renderer->activePixels(), 21u * 13u) << "adaptive sampling must stop some pixels";
                 continue;
             }
@@ -168,6 +171,8 @@ TEST(GpuRender, AutoLightSamplingIsSolidAngleOrAreaPerPoint) {
         return a.sum.size() == b.sum.size() && std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0;
     };
     const PixelSums solid = render(LightSampling::SolidAngle, 0.0f), area = render(LightSampling::Area, 0.0f);
+    EXPECT_TRUE(litAndNotConstant(solid.mean(), "cornell-classic, solid-angle"));
+    EXPECT_TRUE(litAndNotConstant(area.mean(), "cornell-classic, area"));
     EXPECT_FALSE(same(solid, area));
     EXPECT_TRUE(same(render(LightSampling::Auto, 0.0f), solid));
     EXPECT_TRUE(same(render(LightSampling::Auto, 1e9f), area));
@@ -213,7 +218,9 @@ TEST(GpuRender, SamplersAgreeOnCornellBook3) {
         r.renderer->addSamples(spp);
         EXPECT_EQ(r.renderer->counters().nonfinite, 0u) << samplerName(s);
         EXPECT_EQ(r.renderer->counters().loopGuard, 0u) << samplerName(s);
-        results.push_back(blockStats(r.renderer->readSums(), 8));
+        const PixelSums sums = r.renderer->readSums();
+        EXPECT_TRUE(litAndNotConstant(sums.mean(), std::string("cornell-book3, ") + samplerName(s)));
+        results.push_back(blockStats(sums, 8));
     }
     const std::size_t n = results.size();
     double maxZ = 0;
@@ -265,6 +272,7 @@ TEST(GpuRender, SceneVariantMatchesFullVariant) {
         variant.renderer->addSamples(4);
         full.renderer->addSamples(4);
         const PixelSums a = variant.renderer->readSums(), b = full.renderer->readSums();
+        EXPECT_TRUE(litAndNotConstant(a.mean(), std::string(name) + ", scene variant"));
         EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double))) << name;
     }
 }
