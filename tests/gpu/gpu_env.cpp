@@ -1,14 +1,6 @@
 #include "gpu_env.h"
 
-#include <cstdlib>
-#include <cstring>
-
 namespace vkp::test {
-
-bool inCi() {
-    const char* ci = std::getenv("CI");
-    return ci && (std::strcmp(ci, "true") == 0 || std::strcmp(ci, "1") == 0);
-}
 
 GpuEnv::GpuEnv() {
     try {

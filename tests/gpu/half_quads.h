@@ -69,10 +69,21 @@ inline std::vector<Pixel> halfQuadPixels(const Scene& scene, int q, Half half) {
     return out;
 }
 
+/// What the comparison below asks of its second render: lit and not constant, as two renders of
+/// nothing would agree, or (when the call says why that is right) only not all black.
+enum class SecondRender { Varied, MayBeOneColour };
+
 /// z-tests (one per channel, against zBudget()) that the average of `pixels` is the same in two
-/// independent renders a and b: the difference of the averages has variance var_a + var_b.
+/// independent renders a and b: the difference of the averages has variance var_a + var_b. Image a
+/// must be lit and not constant (litAndNotConstant), b too unless `second` says otherwise
+/// (named "<what> [first render]" and "[second render]" in the failures).
 inline void expectSameWithinNoise(const PixelStats& a, const PixelStats& b, const std::vector<Pixel>& pixels,
-                                  const std::string& what) {
+                                  const std::string& what, SecondRender second = SecondRender::Varied) {
+    EXPECT_TRUE(litAndNotConstant(a.mean, what + " [first render]"));
+    if (second == SecondRender::Varied)
+        EXPECT_TRUE(litAndNotConstant(b.mean, what + " [second render]"));
+    else
+        EXPECT_TRUE(notAllBlack(b.mean, what + " [second render]"));
     ASSERT_GT(pixels.size(), 500u) << what;
     for (int c = 0; c < 3; ++c) {
         const Estimate ea = average(a, pixels, c), eb = average(b, pixels, c);

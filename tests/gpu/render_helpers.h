@@ -1,8 +1,14 @@
-// Small helpers for GPU tests that render scenes.
+// The one place where the GPU and stress tests build a Renderer (so that a change of the Renderer
+// constructor touches only this file): a scene, its BVH and the renderer over them, kept together;
+// and renderSums, a whole render's per-pixel sums with the checks every render must pass.
 #pragma once
+#include <gtest/gtest.h>
+
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "bvh/flatten.h"
 #include "bvh/two_level.h"
@@ -19,19 +25,54 @@ struct TestRender {
     std::unique_ptr<Renderer> renderer;
 };
 
-/// Loads `file`, sets the image size (keeping nothing of the scene's), builds and uploads it.
-inline TestRender makeRender(VulkanDevice& dev, const std::filesystem::path& file, std::uint32_t width,
-                             std::uint32_t height, Sampler sampler, std::uint32_t samplesPerDispatch = 1) {
+/// Builds the BVH of `scene` (two-level when the scene has instances, as the CLI does) and uploads
+/// both with renderer options `o`. Throws what the Renderer throws (VulkanError beyond the
+/// device's limits).
+inline TestRender makeRender(VulkanDevice& dev, Scene scene, const RendererOptions& o) {
     TestRender r;
-    r.scene = loadSceneJson(file);
-    r.scene.camera.width = width;
-    r.scene.camera.height = height;
-    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
+    r.scene = std::move(scene);
+    r.bvh = buildSceneBvh(r.scene);
+    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
+    return r;
+}
+
+/// makeRender with `sampler` and `samplesPerDispatch` (RendererOptions), every other option default.
+inline TestRender makeRender(VulkanDevice& dev, Scene scene, Sampler sampler, std::uint32_t samplesPerDispatch = 4) {
     RendererOptions o;
     o.sampler = sampler;
     o.samplesPerDispatch = samplesPerDispatch;
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
-    return r;
+    return makeRender(dev, std::move(scene), o);
+}
+
+/// Loads the JSON scene `file`, sets the image size to width x height (the scene's other settings
+/// kept) and makes its renderer with `sampler`, `samplesPerDispatch` samples per dispatch.
+inline TestRender makeRender(VulkanDevice& dev, const std::filesystem::path& file, std::uint32_t width,
+                             std::uint32_t height, Sampler sampler, std::uint32_t samplesPerDispatch = 1) {
+    Scene scene = loadSceneJson(file);
+    scene.camera.width = width;
+    scene.camera.height = height;
+    return makeRender(dev, std::move(scene), sampler, samplesPerDispatch);
+}
+
+/// Renders `scene` with options `o` for spp samples and returns the sums; expects no non-finite
+/// sample and no path cut by the loop guard (`what` names the render in the messages).
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RendererOptions& o, std::uint32_t spp,
+                            const std::string& what) {
+    TestRender r = makeRender(dev, scene, o);
+    r.renderer->addSamples(spp);
+    const RenderCounters c = r.renderer->counters();
+    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(o.sampler);
+    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(o.sampler);
+    return r.renderer->readSums();
+}
+
+/// renderSums with `sampler` and 4 samples per dispatch.
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
+                            const std::string& what) {
+    RendererOptions o;
+    o.sampler = sampler;
+    o.samplesPerDispatch = 4;
+    return renderSums(dev, scene, o, spp, what);
 }
 
 }  // namespace vkp::test

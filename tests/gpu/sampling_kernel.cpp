@@ -27,7 +27,7 @@ namespace vkp::test::sampling {
 namespace gpu = vkp::gpu;
 
 std::vector<Out> runSamplingKernel(VulkanDevice& dev, Routine r, const std::vector<Item>& items) {
-    static std::unique_ptr<ComputePipeline> pipe;  // one JIT for the whole test program
+    static std::unique_ptr<ComputePipeline> pipe;  // one JIT per process (each test case has its own)
     static std::unique_ptr<GpuBuffer> albedo;      // microfacet.h's GGX albedo table, as the host has it
     if (!pipe) {
         ComputePipelineDesc d;

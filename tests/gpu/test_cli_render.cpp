@@ -4,8 +4,11 @@
 
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/image_io.h"
 #include "gpu_env.h"
+#include "image_checks.h"
 #include "run_process.h"
 #include "test_paths.h"
 
@@ -46,18 +49,34 @@ TEST_F(CliRender, ProgressiveDumps) {
     // The last dump is the final image.
     const Image last = readImage(dir / "frames" / "frame-000006.pfm");
     const Image fin = readImage(dir / "final.pfm");
+    EXPECT_TRUE(litAndNotConstant(fin, "final.pfm"));  // two empty images would be equal
     EXPECT_EQ(last.rgb, fin.rgb);
     // A later frame differs from an earlier one (more samples).
     EXPECT_NE(readImage(dir / "frames" / "frame-000002.pfm").rgb, fin.rgb);
 }
 
+// --time stops the render by the clock, not by --spp: far fewer samples than asked, at least one,
+// and the wall time (counted from process start, --stats-json seconds_total) near the limit. The
+// session ends before a batch that would not fit in the time left (batches aim at 0.5 s), so the
+// run may end a little before 3 s; the upper bound allows a loaded machine's JIT, a last batch
+// and the writing of the outputs: a functional check that the limit works, not a measurement.
 TEST_F(CliRender, TimeLimitStopsBeforeSpp) {
     VKP_REQUIRE_DEVICE(dev);
+    std::filesystem::remove(dir / "t.json");
     const ProcessResult r = run({"render", scene("cornell-book3.json"), "--spp", "1000000", "--time", "3", "--width",
-                                 "32", "--height", "32", "-o", "t.png"});
+                                 "32", "--height", "32", "-o", "t.png", "--stats-json", "t.json"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir / "t.png"));
-    EXPECT_EQ(r.err.find("1000000 spp in"), std::string::npos) << r.err;
+    std::ifstream f(dir / "t.json");
+    const nlohmann::json j = nlohmann::json::parse(f);
+    const std::uint32_t spp = j["spp"];
+    const double total = j["seconds_total"];
+    EXPECT_GE(spp, 1u);
+    EXPECT_LT(spp, 1000000u) << "the render reached --spp: --time did not stop it";
+    EXPECT_EQ(j["time_limit"].get<double>(), 3.0);
+    EXPECT_GE(total, 2.0) << "stopped well before the time limit";
+    EXPECT_LE(total, 15.0) << "ran far beyond the time limit";
+    EXPECT_NE(r.err.find(std::to_string(spp) + " spp in"), std::string::npos) << r.err;
 }
 
 TEST_F(CliRender, InfoNamesCountsBvhAndVariant) {

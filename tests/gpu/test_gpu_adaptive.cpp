@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "gpu_env.h"
+#include "image_checks.h"
 #include "render/adaptive.h"
 #include "render_helpers.h"
 #include "test_paths.h"
@@ -14,18 +15,16 @@
 namespace vkp::test {
 namespace {
 
+/// cornell-book3 at size x size pixels with mis and adaptive sampling (samples per dispatch: auto).
 TestRender makeAdaptive(VulkanDevice& dev, std::uint32_t size, double threshold, std::uint32_t minSpp) {
-    TestRender r;
-    r.scene = loadSceneJson(scenesDir() / "cornell-book3.json");
-    r.scene.camera.width = size;
-    r.scene.camera.height = size;
-    r.bvh = buildFlatBvh(r.scene);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
+    scene.camera.width = size;
+    scene.camera.height = size;
     RendererOptions o;
     o.sampler = Sampler::Mis;
     o.adaptiveThreshold = threshold;
     o.adaptiveMinSpp = minSpp;
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
-    return r;
+    return makeRender(dev, std::move(scene), o);
 }
 
 // Stopped pixels keep their sums bit for bit while the others go on, and every active pixel gets
@@ -64,6 +63,7 @@ TEST(GpuAdaptive, IndependentOfHowSamplesAreSplit) {
     for (std::uint32_t n : {7u, 30u, 1u, 50u, 12u}) b.renderer->addSamples(n);
     EXPECT_EQ(a.renderer->activeMask(), b.renderer->activeMask());
     const PixelSums sa = a.renderer->readSums(), sb = b.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "adaptive cornell-book3, 100 spp in one call"));
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(double)));
 }
 
@@ -82,6 +82,8 @@ TEST(GpuAdaptive, AgreesWithUniformSamplingWithinNoise) {
     std::printf("adaptive: %.1f spp on average, %u pixels active at 1024 spp\n", meanSpp, ad.renderer->activePixels());
     EXPECT_LT(meanSpp, 1024.0 * 0.9) << "too few pixels stopped for this test to mean anything";
     const PixelSums sa = ad.renderer->readSums(), su = un.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "cornell-book3, adaptive"));
+    EXPECT_TRUE(litAndNotConstant(su.mean(), "cornell-book3, uniform"));
     const Image ma = sa.mean(), va = sa.varianceOfMean(), mu = su.mean(), vu = su.varianceOfMean();
     double maxZ = 0;
     for (std::uint32_t by = 0; by < size; by += 8)

@@ -1,6 +1,7 @@
 // Shared pieces of the accuracy tests (tests/gpu/test_gpu_analytic*.cpp, test_gpu_convergence*.cpp,
-// tests/stress): rendering a Scene held in memory, z-tests of pixel means against expected values
-// with tolerances in standard errors, and the Sidak-corrected critical value of a test suite.
+// tests/stress): z-tests of pixel means against expected values with tolerances in standard
+// errors (the Sidak-corrected critical value of a test executable: z_budget.h), closed-form
+// irradiance, and the comparison of two renders. Renders are made with render_helpers.h.
 //
 // Statistics. A pixel's mean over n samples has variance sigma^2 / n, estimated by
 // PixelSums::varianceOfMean (sample variance / n). A region (a block of pixels, or a list of
@@ -11,10 +12,10 @@
 // (Higham, "Accuracy and Stability of Numerical Algorithms", sec. 4.2), kept as a generous bound
 // for pixels whose samples are all equal (zero variance) although the device's sums are now
 // double-float pairs (shaders/shared/compensated_sum.h) and err far less.
-// z_crit comes from a suite budget: a test executable declares that it performs at most B z-tests
-// at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B) (Sidak 1967:
-// for jointly normal statistics, correlated or not, the family-wise false-failure probability is
-// then <= alpha). The executable checks at exit that it did not exceed B.
+// z_crit comes from a suite budget (z_budget.h): a test executable declares that it performs at
+// most B z-tests at family-wise level alpha; each is run at the Sidak level 1 - (1 - alpha)^(1/B)
+// (Sidak 1967: for jointly normal statistics, correlated or not, the family-wise false-failure
+// probability is then <= alpha). The executable checks at exit that its tests did not exceed B.
 // The region means are averages of >= 4096 samples, so the normal approximation is adequate for
 // the tails used here (z ~ 4.4-4.6) as long as the samples are not heavy-tailed; each test says
 // why its samples are not.
@@ -32,74 +33,14 @@
 #include <string>
 #include <vector>
 
-#include "bvh/flatten.h"
-#include "bvh/two_level.h"
+#include "image_checks.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "render_helpers.h"
 #include "scene/scene.h"
-#include "vk/device.h"
+#include "z_budget.h"
 
 namespace vkp::test {
-
-/// z with P(|Z| > z) = alpha for a standard normal Z (bisection on erfc; alpha in (0, 1)).
-inline double normalTwoSidedZ(double alpha) {
-    double lo = 0.0, hi = 40.0;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (std::erfc(mid / std::sqrt(2.0)) > alpha) lo = mid; else hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/// The z-test budget of one test executable (see the file comment). One global instance per
-/// executable: zBudget().
-class ZBudget {
-public:
-    /// Declares at most `tests` z-tests at family-wise false-failure probability `familyAlpha`.
-    void declare(int tests, double familyAlpha) {
-        budget_ = tests;
-        alpha_ = familyAlpha;
-        z_ = normalTwoSidedZ(1.0 - std::pow(1.0 - familyAlpha, 1.0 / tests));
-    }
-    /// The critical |z| of one test; counts it.
-    double take() {
-        ++used_;
-        return z_;
-    }
-    double z() const { return z_; }
-    int used() const { return used_; }
-    int budget() const { return budget_; }
-    double alpha() const { return alpha_; }
-    double maxAbsZ = 0.0;  ///< largest |z| seen (reported)
-
-private:
-    int budget_ = 1, used_ = 0;
-    double alpha_ = 0.01, z_ = 5.0;
-};
-inline ZBudget& zBudget() {
-    static ZBudget b;
-    return b;
-}
-
-/// gtest environment that declares the budget before the tests and checks it after them.
-class ZBudgetEnvironment : public ::testing::Environment {
-public:
-    ZBudgetEnvironment(int tests, double familyAlpha) : tests_(tests), alpha_(familyAlpha) {}
-    void SetUp() override {
-        zBudget().declare(tests_, alpha_);
-        std::printf("z-test budget: %d tests, family-wise alpha %.3g, critical |z| %.3f\n", tests_, alpha_,
-                    zBudget().z());
-    }
-    void TearDown() override {
-        std::printf("z-tests used: %d of %d, largest |z| %.2f\n", zBudget().used(), zBudget().budget(),
-                    zBudget().maxAbsZ);
-        EXPECT_LE(zBudget().used(), zBudget().budget()) << "raise the declared z-test budget";
-    }
-
-private:
-    int tests_;
-    double alpha_;
-};
 
 /// Mean of a region and the variance of that mean.
 struct Estimate {
@@ -171,52 +112,6 @@ inline ::testing::AssertionResult withinNoise(const Estimate& e, double expected
     return ::testing::AssertionFailure() << msg.str();
 }
 
-/// A renderer with its scene and BVH kept alive beside it.
-struct SceneRender {
-    Scene scene;
-    FlatBvh bvh;
-    std::unique_ptr<Renderer> renderer;
-};
-
-/// Builds and uploads `scene` with renderer options `o`.
-inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, const RendererOptions& o) {
-    SceneRender r;
-    r.scene = scene;
-    r.bvh = buildSceneBvh(r.scene);  // two-level when the scene has instances
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
-    return r;
-}
-
-/// Builds and uploads `scene` for `sampler`. samplesPerDispatch: see RendererOptions.
-inline SceneRender makeSceneRender(VulkanDevice& dev, const Scene& scene, Sampler sampler,
-                                   std::uint32_t samplesPerDispatch = 4) {
-    RendererOptions o;
-    o.sampler = sampler;
-    o.samplesPerDispatch = samplesPerDispatch;
-    return makeSceneRender(dev, scene, o);
-}
-
-/// Renders `scene` with options `o` for spp samples and returns the sums; expects no non-finite
-/// sample and no path cut by the loop guard.
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RendererOptions& o, std::uint32_t spp,
-                            const std::string& what) {
-    SceneRender r = makeSceneRender(dev, scene, o);
-    r.renderer->addSamples(spp);
-    const RenderCounters c = r.renderer->counters();
-    EXPECT_EQ(c.nonfinite, 0u) << what << " " << samplerName(o.sampler);
-    EXPECT_EQ(c.loopGuard, 0u) << what << " " << samplerName(o.sampler);
-    return r.renderer->readSums();
-}
-
-/// renderSums with `sampler` and 4 samples per dispatch.
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
-                            const std::string& what) {
-    RendererOptions o;
-    o.sampler = sampler;
-    o.samplesPerDispatch = 4;
-    return renderSums(dev, scene, o, spp, what);
-}
-
 // ---- Closed-form irradiance on a plane, averaged over pixel footprints -------------------------
 
 constexpr double kPi = 3.14159265358979323846;
@@ -278,18 +173,32 @@ inline Estimate difference(const Estimate& a, const Estimate& b) {
     return d;
 }
 
-/// Two independent renders of the same image (size x size pixels) that must agree within noise:
-/// the whole image (printed) and every block x block square, per channel, z-test of a - b against 0
-/// (3 x (1 + (size / block)^2) tests of zBudget()). `what` names the pair in messages. Returns the
-/// whole image's mean of a per channel, for checks that the scene is lit.
-inline glm::dvec3 expectRendersAgree(const PixelStats& a, const PixelStats& b, std::uint32_t size, std::uint32_t block,
-                                     const std::string& what) {
+/// difference() of the averages of `pixels` (channel c) in two independent renders a and b.
+inline Estimate difference(const PixelStats& a, const PixelStats& b, const std::vector<Pixel>& pixels, int c) {
+    return difference(average(a, pixels, c), average(b, pixels, c));
+}
+
+/// The whole image and every block x block square of a size x size image, named for messages.
+inline std::vector<std::pair<std::string, std::vector<Pixel>>> imageAndBlocks(std::uint32_t size, std::uint32_t block) {
     std::vector<std::pair<std::string, std::vector<Pixel>>> regions = {{"image", rect(0, 0, size, size)}};
     for (std::uint32_t by = 0; by < size; by += block)
         for (std::uint32_t bx = 0; bx < size; bx += block)
             regions.push_back({"block " + std::to_string(bx) + "," + std::to_string(by), rect(bx, by, bx + block, by + block)});
+    return regions;
+}
+
+/// Two independent renders of the same image (size x size pixels), a named nameA and b nameB,
+/// that must agree within noise: both must be lit and not constant (litAndNotConstant: two black
+/// images agree), then the whole image (printed) and every block x block square, per channel,
+/// z-test of a - b against 0 (3 x (1 + (size / block)^2) tests of zBudget()). Returns the whole
+/// image's mean of a per channel, for checks that the scene is lit as brightly as it should be.
+inline glm::dvec3 expectRendersAgree(const PixelStats& a, const std::string& nameA, const PixelStats& b,
+                                     const std::string& nameB, std::uint32_t size, std::uint32_t block) {
+    EXPECT_TRUE(litAndNotConstant(a.mean, nameA));
+    EXPECT_TRUE(litAndNotConstant(b.mean, nameB));
+    const std::string what = nameA + " - " + nameB;
     glm::dvec3 imageMean(0.0);
-    for (const auto& [name, px] : regions)
+    for (const auto& [name, px] : imageAndBlocks(size, block))
         for (int c = 0; c < 3; ++c) {
             const Estimate ea = average(a, px, c), eb = average(b, px, c);
             if (name == "image") imageMean[c] = ea.mean;

@@ -5,7 +5,9 @@
 // The Sobol' sequence (shaders/shared/sobol.h) is tested by 3, 4 and 5 (file end).
 //
 // Every sampler renders 4096 samples per pixel (its own seed), read back every 16 samples: 256
-// disjoint 16-spp chunks and 4 disjoint 1024-spp blocks per pixel.
+// disjoint 16-spp chunks and 4 disjoint 1024-spp blocks per pixel. Tests 1, 2 and 3 all read these
+// renders, so they are one gtest case (GpuConvergence.RmseSlopeAndUncorrelatedSeeds), which makes
+// them once; 4 and 5 are cases of their own.
 //
 // 1. RMSE against a reference falls as spp^(-1/2): the log-log slope between 16 and 1024 spp lies
 //    in [-0.55, -0.45] for every sampler.
@@ -100,14 +102,11 @@ SamplerRun runScene(VulkanDevice& dev, const Scene& scene, Sampler sampler, std:
     SamplerRun run;
     run.sampler = sampler;
     run.seed = scene.render.seed;
-    SceneRender r;
-    r.scene = scene;
-    r.bvh = buildFlatBvh(r.scene);
     RendererOptions o;
     o.sampler = sampler;
     o.sequence = sequence;
     o.samplesPerDispatch = 4;
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
+    TestRender r = makeRender(dev, scene, o);
     const PixelSums start = r.renderer->readSums();
     PixelSums prev = start, blockStart = start;
     for (std::uint32_t done = 0; done < spp; done += kChunk) {
@@ -232,23 +231,8 @@ Slope slopeOf(const SamplerRun& run, const Reference& ref, double bias = 0.0) {
 
 bool inInterval(double slope) { return slope >= -0.55 && slope <= -0.45; }
 
-/// The renders shared by the tests below, made once.
-class GpuConvergence : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        VulkanDevice* dev = GpuEnv::get().device();
-        if (!dev) return;
-        for (Sampler s : samplersUnderTest()) runs().push_back(runSampler(*dev, s, 1000 + 7 * std::uint32_t(s), kFullSpp));
-    }
-    static std::vector<SamplerRun>& runs() {
-        static std::vector<SamplerRun> r;
-        return r;
-    }
-};
-
-TEST_F(GpuConvergence, RmseFallsAsInverseSquareRootOfSpp) {
-    VKP_REQUIRE_DEVICE(dev);
-    const std::vector<SamplerRun>& rs = runs();
+/// Test 1 on `rs`, every sampler's 4096-spp render (see GpuConvergence.RmseSlopeAndUncorrelatedSeeds below).
+void expectRmseFallsAsInverseSquareRootOfSpp(VulkanDevice& dev, const std::vector<SamplerRun>& rs) {
     ASSERT_GE(rs.size(), 2u);
     for (std::size_t k = 0; k < rs.size(); ++k) {
         const char* name = samplerName(rs[k].sampler);
@@ -295,9 +279,8 @@ void varianceRatio(const std::vector<std::pair<const Span*, const Span*>>& pairs
     sd = std::sqrt(vl);
 }
 
-TEST_F(GpuConvergence, RendersWithDifferentSeedsAreUncorrelated) {
-    VKP_REQUIRE_DEVICE(dev);
-    const std::vector<SamplerRun>& rs = runs();
+/// Test 2 on `rs` (as test 1).
+void expectRendersWithDifferentSeedsUncorrelated(VulkanDevice& dev, const std::vector<SamplerRun>& rs) {
     const double z = normalTwoSidedZ(1.0 - std::pow(1.0 - 0.01, 1.0 / double(rs.size())));
     for (std::size_t k = 0; k < rs.size(); ++k) {
         const char* name = samplerName(rs[k].sampler);
@@ -358,9 +341,8 @@ void replicateRatio(const Span& a, const Span& b, const Span& c, const Span& d, 
     sd = std::sqrt(vl);
 }
 
-TEST_F(GpuConvergence, SobolRendersWithDifferentSeedsAreUncorrelated) {
-    VKP_REQUIRE_DEVICE(dev);
-    const std::vector<SamplerRun>& rs = runs();
+/// Test 3; `rs` (as test 1) gives the weights.
+void expectSobolRendersWithDifferentSeedsUncorrelated(VulkanDevice& dev, const std::vector<SamplerRun>& rs) {
     const double z = normalTwoSidedZ(1.0 - std::pow(1.0 - 0.01, 1.0 / double(rs.size())));
     for (std::size_t k = 0; k < rs.size(); ++k) {
         const Sampler smp = rs[k].sampler;
@@ -380,6 +362,26 @@ TEST_F(GpuConvergence, SobolRendersWithDifferentSeedsAreUncorrelated) {
         replicateRatio(a.blocks[0], a.first2048, c.blocks[0], d.blocks[0], w, nested, sdNested);
         std::printf("         block 0 against the 2048 samples that contain it: R = %.3f\n", nested);
         EXPECT_GT(std::abs(nested - 1.0), z * sdNested) << name << ": the test cannot see a correlation";
+    }
+}
+
+// Tests 1, 2 and 3 read the same renders, 4096 spp of every sampler with its own seed: one test,
+// so that they are made once (CTest runs every test in a process of its own).
+TEST(GpuConvergence, RmseSlopeAndUncorrelatedSeeds) {
+    VKP_REQUIRE_DEVICE(dev);
+    std::vector<SamplerRun> rs;
+    for (Sampler s : samplersUnderTest()) rs.push_back(runSampler(dev, s, 1000 + 7 * std::uint32_t(s), kFullSpp));
+    {
+        SCOPED_TRACE("test 1: RMSE falls as spp^(-1/2)");
+        expectRmseFallsAsInverseSquareRootOfSpp(dev, rs);
+    }
+    {
+        SCOPED_TRACE("test 2: renders with different seeds are uncorrelated");
+        expectRendersWithDifferentSeedsUncorrelated(dev, rs);
+    }
+    {
+        SCOPED_TRACE("test 3: Sobol' renders with different seeds are uncorrelated");
+        expectSobolRendersWithDifferentSeedsUncorrelated(dev, rs);
     }
 }
 

@@ -80,17 +80,16 @@ TEST(GpuEmissiveTexture, NextEventEstimationSeesTheTexture) {
     VKP_REQUIRE_DEVICE(dev);
     const std::uint32_t spp = 1024;
     const PixelStats ref(renderSums(dev, emissiveScene(kFloorCamera, 11), Sampler::Bsdf, spp, "emissive floor"));
+    EXPECT_TRUE(litAndNotConstant(ref.mean, "emissive floor, bsdf"));
     for (Sampler s : {Sampler::Light, Sampler::Mis}) {
         const PixelStats st(renderSums(dev, emissiveScene(kFloorCamera, 12 + std::uint32_t(s)), s, spp, "emissive floor"));
+        EXPECT_TRUE(litAndNotConstant(st.mean, std::string("emissive floor, ") + samplerName(s)));
         double worst = 0.0;
         for (std::uint32_t by = 0; by < 32; by += 8)
             for (std::uint32_t bx = 0; bx < 32; bx += 8) {
                 const std::vector<Pixel> block = rect(bx, by, bx + 8, by + 8);
                 for (int c = 0; c < 3; ++c) {
-                    const Estimate a = average(st, block, c), b = average(ref, block, c);
-                    Estimate d = a;
-                    d.mean = a.mean - b.mean;
-                    d.var = a.var + b.var;
+                    const Estimate b = average(ref, block, c), d = difference(st, ref, block, c);
                     EXPECT_TRUE(withinNoise(d, 0.0, std::string(samplerName(s)) + " - bsdf, block " + std::to_string(bx) +
                                                         "," + std::to_string(by) + " " + kChannel[c]));
                     if (b.mean > 0.0) worst = std::max(worst, std::abs(d.mean) / b.mean);
@@ -166,28 +165,21 @@ TEST(GpuEmissiveTexture, PerTrianglePowerKeepsTheMeanAndCutsVariance) {
         return PixelStats(renderSums(dev, spotScene(seed), o, spp, "emissive spot"));
     };
     const PixelStats bsdf = render(Sampler::Bsdf, LightPick::Power, 140);
+    EXPECT_TRUE(litAndNotConstant(bsdf.mean, "emissive spot, bsdf"));
     const Estimate ref = average(bsdf, rect(0, 0, 32, 32), 1);
     for (Sampler s : {Sampler::Light, Sampler::Mis}) {
         const PixelStats power = render(s, LightPick::Power, 141 + 2 * std::uint32_t(s));
         const PixelStats before = render(s, LightPick::Uniform, 142 + 2 * std::uint32_t(s));
+        EXPECT_TRUE(litAndNotConstant(power.mean, std::string("emissive spot, power pick, ") + samplerName(s)));
+        EXPECT_TRUE(litAndNotConstant(before.mean, std::string("emissive spot, uniform pick, ") + samplerName(s)));
         for (std::uint32_t by = 0; by < 32; by += 8)
-            for (std::uint32_t bx = 0; bx < 32; bx += 8) {
-                const std::vector<Pixel> block = rect(bx, by, bx + 8, by + 8);
-                const Estimate a = average(power, block, 1), b = average(before, block, 1);
-                Estimate d = a;
-                d.mean = a.mean - b.mean;
-                d.var = a.var + b.var;
-                EXPECT_TRUE(withinNoise(d, 0.0, std::string(samplerName(s)) + " power - before, block " +
-                                                    std::to_string(bx) + "," + std::to_string(by)));
-            }
+            for (std::uint32_t bx = 0; bx < 32; bx += 8)
+                EXPECT_TRUE(withinNoise(difference(power, before, rect(bx, by, bx + 8, by + 8), 1), 0.0,
+                                        std::string(samplerName(s)) + " power - before, block " + std::to_string(bx) + "," +
+                                            std::to_string(by)));
         const Estimate all = average(power, rect(0, 0, 32, 32), 1), old = average(before, rect(0, 0, 32, 32), 1);
-        Estimate d = all;
-        d.mean = all.mean - ref.mean;
-        d.var = all.var + ref.var;
-        EXPECT_TRUE(withinNoise(d, 0.0, std::string(samplerName(s)) + " power - bsdf, image", true));
-        d.mean = all.mean - old.mean;
-        d.var = all.var + old.var;
-        EXPECT_TRUE(withinNoise(d, 0.0, std::string(samplerName(s)) + " power - before, image", true));
+        EXPECT_TRUE(withinNoise(difference(all, ref), 0.0, std::string(samplerName(s)) + " power - bsdf, image", true));
+        EXPECT_TRUE(withinNoise(difference(all, old), 0.0, std::string(samplerName(s)) + " power - before, image", true));
         EXPECT_GT(all.mean, 0.002);  // lit (0.0033 at these seeds)
         const double ratio = old.var / all.var;  // variance of the image mean = sum of pixel variances / 32^4
         std::printf("  %s: image mean G %.5f (before %.5f, bsdf %.5f +- %.5f); variance before / power = %.2f\n",

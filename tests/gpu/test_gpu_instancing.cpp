@@ -7,8 +7,14 @@
 // each channel (51 tests), Sidak-corrected over the budget below (family-wise false-failure
 // probability 0.01, test_gpu_analytic_common.h). Every sample is a path of bounded radiance except
 // through the glass, where a light seen through it is found by BSDF sampling only; 1024 spp per
-// pixel and 64 pixels per block keep the block means near normal.
+// pixel and 64 pixels per block keep the block means near normal. The instances must show: the
+// image with them differs from the same scene without them (its shared meshes removed) by more
+// than the critical z of the budget in each channel (3 tests more), so two renders that both lost
+// the instanced meshes cannot pass.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
 
 #include "gpu_env.h"
 #include "scene/gltf.h"
@@ -20,8 +26,6 @@ namespace {
 
 [[maybe_unused]] ::testing::Environment* const kBudget =
     ::testing::AddGlobalTestEnvironment(new ZBudgetEnvironment(60, 0.01));
-
-const char* const kChannel[3] = {"R", "G", "B"};
 
 Scene instancesScene(bool instancing, std::uint32_t seed) {
     GltfOptions o;
@@ -41,7 +45,22 @@ TEST(GpuInstancing, InstancedRenderAgreesWithTheFlattenedOne) {
     ASSERT_EQ(instanced.meshes.size(), 2u);
     const PixelStats a(renderSums(dev, instanced, Sampler::Mis, spp, "instances.gltf, instanced"));
     const PixelStats b(renderSums(dev, instancesScene(false, 602), Sampler::Mis, spp, "instances.gltf, flattened"));
-    expectRendersAgree(a, b, 32, 8, "instanced - flattened");
+    const glm::dvec3 lit = expectRendersAgree(a, "instanced", b, "flattened", 32, 8);
+    Scene bare = instancesScene(true, 603);
+    bare.meshes.clear();
+    bare.instances.clear();
+    const PixelStats c(renderSums(dev, bare, Sampler::Mis, spp, "instances.gltf without its shared meshes"));
+    const std::vector<Pixel> all = rect(0, 0, 32, 32);
+    for (int ch = 0; ch < 3; ++ch) {
+        const Estimate d = difference(a, c, all, ch);
+        EXPECT_DOUBLE_EQ(average(a, all, ch).mean, lit[ch]);
+        const double z = zBudget().take();
+        EXPECT_GT(std::abs(d.mean), z * std::sqrt(d.var))
+            << "the instanced meshes change the image mean " << lit[ch] << " by " << d.mean << " (channel " << kChannel[ch]
+            << "): they must be seen";
+        std::printf("  instanced meshes change the image mean (%s) by %+.4g = %+.1f se\n", kChannel[ch], d.mean,
+                    d.mean / std::sqrt(d.var));
+    }
 }
 
 }  // namespace

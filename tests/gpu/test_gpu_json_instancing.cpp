@@ -20,8 +20,6 @@ namespace {
 [[maybe_unused]] ::testing::Environment* const kBudget =
     ::testing::AddGlobalTestEnvironment(new ZBudgetEnvironment(60, 0.01));
 
-const char* const kChannel[3] = {"R", "G", "B"};
-
 Scene includesScene(bool instancing, std::uint32_t seed) {
     const std::string f = (scenesDir() / "gltf" / "instances.gltf").string();
     const std::string text =
@@ -49,7 +47,7 @@ TEST(GpuJsonInstancing, InstancedRenderAgreesWithTheFlattenedOne) {
     ASSERT_EQ(flattened.lights.size(), instanced.lights.size());
     const PixelStats a(renderSums(dev, instanced, Sampler::Mis, spp, "instances.gltf x 3 in JSON, instanced"));
     const PixelStats b(renderSums(dev, flattened, Sampler::Mis, spp, "instances.gltf x 3 in JSON, flattened"));
-    const glm::dvec3 lit = expectRendersAgree(a, b, 32, 8, "instanced - flattened");
+    const glm::dvec3 lit = expectRendersAgree(a, "instanced", b, "flattened", 32, 8);
     for (int c = 0; c < 3; ++c) EXPECT_GT(lit[c], 0.01) << "the scene is lit";
 }
 

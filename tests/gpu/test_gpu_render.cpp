@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "gpu_env.h"
+#include "image_checks.h"
 #include "render_helpers.h"
 #include "test_paths.h"
 
@@ -96,6 +97,7 @@ TEST(GpuRender, BitIdenticalAcrossDispatchSplits) {
     c.renderer->addSamples(1);
     c.renderer->addSamples(5);
     const PixelSums sa = a.renderer->readSums(), sb = b.renderer->readSums(), sc = c.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(sa.mean(), "cornell-book3, 6 spp in one call"));  // identical renders of nothing prove nothing
     ASSERT_EQ(sa.sum.size(), sb.sum.size());
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sb.sum.data(), sa.sum.size() * sizeof(double)));
     EXPECT_EQ(0, std::memcmp(sa.sum.data(), sc.sum.data(), sa.sum.size() * sizeof(double)));
@@ -110,7 +112,6 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
     scene.camera.width = 21;
     scene.camera.height = 13;
-    const FlatBvh bvh = buildFlatBvh(scene);
     for (double adaptive : {0.0, 0.5}) {
         PixelSums first;
         for (const auto& [wx, wy, linear] : {std::tuple{8u, 8u, false}, std::tuple{8u, 8u, true}, std::tuple{16u, 4u, false},
@@ -123,14 +124,15 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
             o.linearTiles = linear;
             o.adaptiveThreshold = adaptive;
             o.adaptiveMinSpp = 4;
-            Renderer r(dev, scene, bvh, o);
-            r.addSamples(24);
-            const PixelSums s = r.readSums();
+            TestRender r = makeRender(dev, scene, o);
+            r.renderer->addSamples(24);
+            const PixelSums s = r.renderer->readSums();
             const std::string what = std::to_string(wx) + "x" + std::to_string(wy) + (linear ? " linear" : " scrambled") +
                                      (adaptive > 0 ? " adaptive" : "");
             if (first.sum.empty()) {
                 first = s;
-                if (adaptive > 0) EXPECT_LT(r.activePixels(), 21u * 13u) << "adaptive sampling must stop some pixels";
+                EXPECT_TRUE(litAndNotConstant(first.mean(), what));
+                if (adaptive > 0) EXPECT_LT(r.renderer->activePixels(), 21u * 13u) << "adaptive sampling must stop some pixels";
                 continue;
             }
             ASSERT_EQ(first.sum.size(), s.sum.size());
@@ -142,7 +144,7 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     RendererOptions big;
     big.workgroupX = 64;
     big.workgroupY = 64;
-    EXPECT_THROW(Renderer(dev, scene, bvh, big), VulkanError);
+    EXPECT_THROW(makeRender(dev, scene, big), VulkanError);
 }
 
 // `--light-sampling auto` is a per-point choice between the other two: with its switch at 0 sr
@@ -155,21 +157,22 @@ TEST(GpuRender, AutoLightSamplingIsSolidAngleOrAreaPerPoint) {
     Scene scene = loadSceneJson(scenesDir() / "cornell-classic.json");
     scene.camera.width = 24;
     scene.camera.height = 24;
-    const FlatBvh bvh = buildFlatBvh(scene);
     auto render = [&](LightSampling ls, float minSize) {
         RendererOptions o;
         o.sampler = Sampler::Mis;
         o.samplesPerDispatch = 4;
         o.lightSampling = ls;
         o.solidAngleMinSize = minSize;
-        Renderer r(dev, scene, bvh, o);
-        r.addSamples(16);
-        return r.readSums();
+        TestRender r = makeRender(dev, scene, o);
+        r.renderer->addSamples(16);
+        return r.renderer->readSums();
     };
     auto same = [](const PixelSums& a, const PixelSums& b) {
         return a.sum.size() == b.sum.size() && std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0;
     };
     const PixelSums solid = render(LightSampling::SolidAngle, 0.0f), area = render(LightSampling::Area, 0.0f);
+    EXPECT_TRUE(litAndNotConstant(solid.mean(), "cornell-classic, solid-angle"));
+    EXPECT_TRUE(litAndNotConstant(area.mean(), "cornell-classic, area"));
     EXPECT_FALSE(same(solid, area));
     EXPECT_TRUE(same(render(LightSampling::Auto, 0.0f), solid));
     EXPECT_TRUE(same(render(LightSampling::Auto, 1e9f), area));
@@ -215,7 +218,9 @@ TEST(GpuRender, SamplersAgreeOnCornellBook3) {
         r.renderer->addSamples(spp);
         EXPECT_EQ(r.renderer->counters().nonfinite, 0u) << samplerName(s);
         EXPECT_EQ(r.renderer->counters().loopGuard, 0u) << samplerName(s);
-        results.push_back(blockStats(r.renderer->readSums(), 8));
+        const PixelSums sums = r.renderer->readSums();
+        EXPECT_TRUE(litAndNotConstant(sums.mean(), std::string("cornell-book3, ") + samplerName(s)));
+        results.push_back(blockStats(sums, 8));
     }
     const std::size_t n = results.size();
     double maxZ = 0;
@@ -259,15 +264,15 @@ TEST(GpuRender, SceneVariantMatchesFullVariant) {
         Scene scene = loadSceneJson(scenesDir() / name);
         scene.camera.width = 24;
         scene.camera.height = 16;
-        const FlatBvh bvh = buildFlatBvh(scene);
         RendererOptions o;
-        Renderer variant(dev, scene, bvh, o);
+        TestRender variant = makeRender(dev, scene, o);
         o.fullVariant = true;
-        Renderer full(dev, scene, bvh, o);
-        EXPECT_NE(variant.features().name(), full.features().name());
-        variant.addSamples(4);
-        full.addSamples(4);
-        const PixelSums a = variant.readSums(), b = full.readSums();
+        TestRender full = makeRender(dev, scene, o);
+        EXPECT_NE(variant.renderer->features().name(), full.renderer->features().name());
+        variant.renderer->addSamples(4);
+        full.renderer->addSamples(4);
+        const PixelSums a = variant.renderer->readSums(), b = full.renderer->readSums();
+        EXPECT_TRUE(litAndNotConstant(a.mean(), std::string(name) + ", scene variant"));
         EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double))) << name;
     }
 }

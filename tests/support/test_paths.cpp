@@ -7,7 +7,6 @@ namespace vkp::test {
 
 std::filesystem::path sourceDir() { return VKPATH_SOURCE_DIR; }
 std::filesystem::path scenesDir() { return VKPATH_SCENES_DIR; }
-std::filesystem::path sharedScenesDir() { return VKPATH_SHARED_SCENES_DIR; }
 std::filesystem::path vkpathBinary() { return VKPATH_BINARY; }
 
 std::filesystem::path scratchDir(const std::string& testName) {

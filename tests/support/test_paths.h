@@ -6,7 +6,6 @@
 namespace vkp::test {
 std::filesystem::path sourceDir();        ///< the repository root
 std::filesystem::path scenesDir();        ///< <repo>/scenes
-std::filesystem::path sharedScenesDir();  ///< ../shared/scenes beside the repository
 std::filesystem::path vkpathBinary();     ///< the built vkpath executable
 /// A fresh-or-existing scratch folder for one test, created: <build tree>/test-scratch/<name>, or
 /// $VKPATH_TEST_TMP/vkpath-tests/<name> when that variable is set.
