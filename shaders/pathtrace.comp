@@ -136,21 +136,26 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
 }
 
 void main() {
+    // The image is rendered in bands of whole rows (push.band; one band unless the accumulation
+    // buffers would exceed the device's storage-buffer range, host/render/gpu_arrays.h planBands):
+    // the accumulation buffers bound to a dispatch hold its band's rows only, from pixel `base` on.
     // Scrambled tile order: lavapipe hands each thread a contiguous run of workgroups, so a
-    // permutation that spreads each run over the image balances cheap and expensive regions
-    // (frame.tiles.z = 1: row order, `--tile-order linear`).
+    // permutation that spreads each run over the band balances cheap and expensive regions
+    // (push.band.w = 1: row order, `--tile-order linear`).
     uint width = frame.size.x;
+    uint base = push.band.x * width;
     bool adaptive = push.adaptive.x != 0u;
     uvec2 pix;
     uint pixel;
     if (!adaptive) {
         uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
-        uint tile = (group * frame.tiles.z) % frame.tiles.y;  // host keeps the product below 2^32
+        uint tile = (group * push.band.w) % push.band.z;  // host keeps the product below 2^32
         pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
-        if (pix.x >= width || pix.y >= frame.size.y) return;
+        pix.y += push.band.x;
+        if (pix.x >= width || pix.y >= push.band.x + push.band.y) return;
         pixel = pix.y * width + pix.x;
     } else {
-        // Only the pixels still active, packed: no lane idles on a converged pixel.
+        // Only the band's pixels still active, packed: no lane idles on a converged pixel.
         uint group = gl_WorkGroupID.y * push.adaptive.w + gl_WorkGroupID.x;
         if (group >= push.adaptive.y) return;
         uint slot = ((group * push.adaptive.z) % push.adaptive.y) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
@@ -158,16 +163,17 @@ void main() {
         pixel = activePixels[slot];
         pix = uvec2(pixel % width, pixel / width);
     }
+    uint at = 2u * (pixel - base);  // the pixel's pair of vec4 in the band's buffers
 
-    vec4 sum = accumSum[2u * pixel];
-    vec4 sumLo = accumSum[2u * pixel + 1u];
-    vec4 sq = accumSq[2u * pixel];
-    vec4 sqLo = accumSq[2u * pixel + 1u];
+    vec4 sum = accumSum[at];
+    vec4 sumLo = accumSum[at + 1u];
+    vec4 sq = accumSq[at];
+    vec4 sqLo = accumSq[at + 1u];
     vec4 dSum = vec4(0.0f);
     vec4 dSq = vec4(0.0f);
     if (adaptive) {
-        dSum = decisionSums[2u * pixel];
-        dSq = decisionSums[2u * pixel + 1u];
+        dSum = decisionSums[at];
+        dSq = decisionSums[at + 1u];
     }
     uint rays = 0u;
     uint nonfinite = 0u;
@@ -198,13 +204,13 @@ void main() {
             s = startPath(pix, pixel, push.batch.x + min(k, push.batch.y - 1u));
         }
     }
-    accumSum[2u * pixel] = sum;
-    accumSum[2u * pixel + 1u] = sumLo;
-    accumSq[2u * pixel] = sq;
-    accumSq[2u * pixel + 1u] = sqLo;
+    accumSum[at] = sum;
+    accumSum[at + 1u] = sumLo;
+    accumSq[at] = sq;
+    accumSq[at + 1u] = sqLo;
     if (adaptive) {
-        decisionSums[2u * pixel] = dSum;
-        decisionSums[2u * pixel + 1u] = dSq;
+        decisionSums[at] = dSum;
+        decisionSums[at + 1u] = dSq;
     }
 
     uint old = atomicAdd(counters[COUNTER_RAYS_LO], rays);

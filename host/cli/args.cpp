@@ -66,7 +66,7 @@ render options:
   --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
   --adaptive T            adaptive sampling: a pixel stops once its estimated relative standard error
                           (that of relMSE's (x-y)^2/(y^2+0.01)) is <= T, e.g. 0.02; unbiased: a quarter
-                          of the samples only decide (README "Adaptive sampling"); --spp is the maximum
+                          of the samples only decide (docs/design.md "Adaptive sampling"); --spp is the maximum
   --adaptive-min-spp N    samples every pixel gets before the first decision (default 64)
   --reference REF         .exr/.pfm/.hdr of the same size: print the final error against it
   --error-log LOG.csv     with --reference: a row spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
@@ -120,9 +120,9 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;
-            if (f == "-o") a.outputs.emplace_back(value(f));
+            if (f == "-o") a.session.outputs.emplace_back(value(f));
             else if (f == "--spp") a.spp = parseUint(f, value(f), 1, 1u << 24);
-            else if (f == "--time") a.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
+            else if (f == "--time") a.session.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
             else if (f == "--width") a.width = parseUint(f, value(f), 1, 16384);
             else if (f == "--height") a.height = parseUint(f, value(f), 1, 16384);
             else if (f == "--max-depth") a.maxDepth = parseUint(f, value(f), 1, 1024);
@@ -130,52 +130,52 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--seed") a.seed = parseUint(f, value(f), 0, 0xffffffffu);
             else if (f == "--sampler") {
                 const std::string s = value(f);
-                if (!parseSampler(s, a.sampler)) usage("--sampler must be bsdf, light, mixture or mis, got '" + s + "'");
+                if (!parseSampler(s, a.render.sampler)) usage("--sampler must be bsdf, light, mixture or mis, got '" + s + "'");
             } else if (f == "--sequence") {
                 const std::string s = value(f);
-                if (!parseSequence(s, a.sequence)) usage("--sequence must be random or sobol, got '" + s + "'");
+                if (!parseSequence(s, a.render.sequence)) usage("--sequence must be random or sobol, got '" + s + "'");
             } else if (f == "--light-pick") {
                 const std::string s = value(f);
-                if (!parseLightPick(s, a.lightPick)) usage("--light-pick must be power or uniform, got '" + s + "'");
+                if (!parseLightPick(s, a.render.lightPick)) usage("--light-pick must be power or uniform, got '" + s + "'");
             } else if (f == "--light-sampling") {
                 const std::string s = value(f);
-                if (!parseLightSampling(s, a.lightSampling))
+                if (!parseLightSampling(s, a.render.lightSampling))
                     usage("--light-sampling must be auto, solid-angle or area, got '" + s + "'");
             } else if (f == "--solid-angle-min") {
-                a.solidAngleMinSize = float(parseDouble(f, value(f), 0.0, 1e3));
+                a.render.solidAngleMinSize = float(parseDouble(f, value(f), 0.0, 1e3));
                 solidAngleMinGiven = true;
             } else if (f == "--workgroup") {
                 const std::string s = value(f);
                 const std::size_t x = s.find('x');
                 if (x == std::string::npos) usage("--workgroup wants WxH, e.g. 16x8, got '" + s + "'");
-                a.workgroupX = parseUint(f, s.substr(0, x), 1, 64);
-                a.workgroupY = parseUint(f, s.substr(x + 1), 1, 64);
-                if (a.workgroupX * a.workgroupY > 1024) usage("--workgroup: W*H must be at most 1024, got '" + s + "'");
+                a.render.workgroupX = parseUint(f, s.substr(0, x), 1, 64);
+                a.render.workgroupY = parseUint(f, s.substr(x + 1), 1, 64);
+                if (a.render.workgroupX * a.render.workgroupY > 1024) usage("--workgroup: W*H must be at most 1024, got '" + s + "'");
             } else if (f == "--tile-order") {
                 const std::string s = value(f);
-                if (s == "linear") a.linearTiles = true;
-                else if (s == "scrambled") a.linearTiles = false;
+                if (s == "linear") a.render.linearTiles = true;
+                else if (s == "scrambled") a.render.linearTiles = false;
                 else usage("--tile-order must be scrambled or linear, got '" + s + "'");
             } else if (f == "--variant") {
                 const std::string v = value(f);
-                if (v == "full") a.fullVariant = true;
+                if (v == "full") a.render.fullVariant = true;
                 else if (v != "auto") usage("--variant must be auto or full, got '" + v + "'");
-            } else if (f == "--exposure") a.exposure = parseDouble(f, value(f), -64, 64);
-            else if (f == "--dump-every") a.dumpEvery = parseUint(f, value(f), 1, 1u << 24);
-            else if (f == "--dump-dir") a.dumpDir = value(f);
+            } else if (f == "--exposure") a.session.exposure = parseDouble(f, value(f), -64, 64);
+            else if (f == "--dump-every") a.session.dumpEvery = parseUint(f, value(f), 1, 1u << 24);
+            else if (f == "--dump-dir") a.session.dumpDir = value(f);
             else if (f == "--dump-format") {
                 const std::string v = value(f);
-                if (v == "exr") a.dumpFormats.push_back(ImageFormat::Exr);
-                else if (v == "pfm") a.dumpFormats.push_back(ImageFormat::Pfm);
-                else if (v == "hdr") a.dumpFormats.push_back(ImageFormat::Hdr);
+                if (v == "exr") a.session.dumpFormats.push_back(ImageFormat::Exr);
+                else if (v == "pfm") a.session.dumpFormats.push_back(ImageFormat::Pfm);
+                else if (v == "hdr") a.session.dumpFormats.push_back(ImageFormat::Hdr);
                 else if (v != "png") usage("--dump-format must be exr, pfm, hdr or png, got '" + v + "'");
-            } else if (f == "--samples-per-dispatch") a.samplesPerDispatch = parseUint(f, value(f), 1, 64);
-            else if (f == "--adaptive") a.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
-            else if (f == "--adaptive-min-spp") a.adaptiveMinSpp = parseUint(f, value(f), 8, 1u << 24);
+            } else if (f == "--samples-per-dispatch") a.render.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            else if (f == "--adaptive") a.render.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
+            else if (f == "--adaptive-min-spp") a.render.adaptiveMinSpp = parseUint(f, value(f), 8, 1u << 24);
             else if (f == "--reference") a.reference = fileValue(f);
             else if (f == "--error-log") a.errorLog = fileValue(f);
             else if (f == "--stats-json") a.statsJson = fileValue(f);
-            else if (f == "--quiet" || f == "-q") a.quiet = true;
+            else if (f == "--quiet" || f == "-q") a.session.quiet = true;
             else usage("unknown option '" + f + "'");
             continue;
         }
@@ -186,7 +186,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
     if (renderOnly && a.command != Command::Render) usage("render options are only valid with 'vkpath render'");
     if (!a.errorLog.empty() && a.reference.empty()) usage("--error-log needs --reference");
-    if (solidAngleMinGiven && a.lightSampling != LightSampling::Auto)
+    if (solidAngleMinGiven && a.render.lightSampling != LightSampling::Auto)
         usage("--solid-angle-min applies to --light-sampling auto only");
     return a;
 }

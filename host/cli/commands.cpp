@@ -15,6 +15,8 @@
 #include "core/errors.h"
 #include "render/error_metrics.h"
 #include "render/features.h"
+#include "render/gpu_arrays.h"
+#include "render/render_job.h"
 #include "render/renderer.h"
 #include "render/run_stats.h"
 #include "render/session.h"
@@ -27,14 +29,17 @@ namespace vkp {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-/// The scene by its extension (.gltf / .glb: glTF, anything else: JSON) with the command line's
-/// overrides; prints its warnings on stderr.
-Scene loadWithOverrides(const CliArgs& a) {
+/// The job of `vkpath render` / `vkpath info`: the scene by its extension (.gltf / .glb: glTF,
+/// anything else: JSON) with the command line's overrides, and its options as parsed. Prints the
+/// scene's warnings on stderr.
+RenderJob makeJob(const CliArgs& a) {
     std::string ext = a.scene.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool gltf = ext == ".gltf" || ext == ".glb";
     if (!gltf && (a.gltfScene || a.camera)) throw InputError("usage: --gltf-scene and --camera are for .gltf and .glb scenes");
-    Scene s;
+    RenderJob job;
+    job.sceneFile = a.scene;
+    Scene& s = job.scene;
     if (gltf) {
         GltfOptions o;
         o.scene = a.gltfScene;
@@ -55,7 +60,11 @@ Scene loadWithOverrides(const CliArgs& a) {
     if (a.maxDepth) s.render.maxDepth = *a.maxDepth;
     if (a.rouletteDepth) s.render.rouletteDepth = *a.rouletteDepth;
     if (a.seed) s.render.seed = *a.seed;
-    return s;
+    job.options = a.render;
+    job.session = a.session;
+    job.session.spp = s.render.spp;
+    if (job.session.outputs.empty()) job.session.outputs.push_back(a.scene.stem().string() + ".png");
+    return job;
 }
 
 std::size_t countShapes(const Scene& s, ShapeType t) {
@@ -66,68 +75,44 @@ std::size_t countShapes(const Scene& s, ShapeType t) {
 }  // namespace
 
 int runRender(const CliArgs& a, Clock::time_point processStart) {
-    RunStats st;
     auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     auto t = Clock::now();
-    Scene scene = loadWithOverrides(a);
-    st.secondsSceneLoad = since(t);
-    std::vector<std::filesystem::path> outputs = a.outputs;
-    if (outputs.empty()) outputs.push_back(a.scene.stem().string() + ".png");
+    RenderJob job = makeJob(a);
+    const double secondsSceneLoad = since(t);
     // Fail before the render and leave no file: outputs, the reference, the logs.
-    for (const auto& o : outputs) checkOutputPath(o);
+    for (const auto& o : job.session.outputs) checkOutputPath(o);
     std::optional<Image> reference;
-    if (!a.reference.empty()) reference = readReferenceImage(a.reference, scene.camera.width, scene.camera.height);
+    if (!a.reference.empty()) reference = readReferenceImage(a.reference, job.scene.camera.width, job.scene.camera.height);
     if (!a.errorLog.empty()) checkCanCreateFile(a.errorLog);
     if (!a.statsJson.empty()) checkCanCreateFile(a.statsJson);
 
     t = Clock::now();
-    FlatBvh bvh = buildSceneBvh(scene);
-    st.secondsBvh = since(t);
+    const FlatBvh bvh = buildSceneBvh(job.scene);
+    const GpuArrays arrays = packGpuArrays(job.scene, bvh, job.options);
+    const double secondsBvh = since(t);
     t = Clock::now();
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);
-    st.secondsSetup = since(t);
-    RendererOptions ro;
-    ro.sampler = a.sampler;
-    ro.sequence = a.sequence;
-    ro.lightPick = a.lightPick;
-    ro.lightSampling = a.lightSampling;
-    ro.solidAngleMinSize = a.solidAngleMinSize;
-    ro.workgroupX = a.workgroupX;
-    ro.workgroupY = a.workgroupY;
-    ro.linearTiles = a.linearTiles;
-    ro.fullVariant = a.fullVariant;
-    ro.samplesPerDispatch = a.samplesPerDispatch;
-    ro.adaptiveThreshold = a.adaptiveThreshold;
-    ro.adaptiveMinSpp = a.adaptiveMinSpp;
+    const double secondsSetup = since(t);
     t = Clock::now();
-    Renderer renderer(device, scene, bvh, ro);
-    st.secondsUpload = since(t);
-    if (!a.quiet)
+    Renderer renderer(device, arrays, job.options);  // refuses a render that does not fit the device
+    const double secondsUpload = since(t);
+    if (!job.session.quiet)
         std::fprintf(stderr, "vkpath: %s, %ux%u, %u spp, device %s, variant %s\n", a.scene.string().c_str(),
-                     scene.camera.width, scene.camera.height, scene.render.spp, device.info().name.c_str(),
+                     job.scene.camera.width, job.scene.camera.height, job.session.spp, device.info().name.c_str(),
                      renderer.features().name().c_str());
 
-    SessionOptions so;
-    so.spp = scene.render.spp;
-    so.timeLimit = a.timeLimit;
-    so.outputs = outputs;
-    so.exposure = a.exposure;
-    so.dumpEvery = a.dumpEvery;
-    so.dumpDir = a.dumpDir;
-    so.dumpFormats = a.dumpFormats;
-    so.quiet = a.quiet;
     std::unique_ptr<ErrorLog> log;
     ErrorMetrics lastError;
     if (reference) {
         if (!a.errorLog.empty()) log = std::make_unique<ErrorLog>(a.errorLog);
-        so.checkpointPowersOfTwo = true;
-        so.onCheckpoint = [&](const Checkpoint& c) {
+        job.session.checkpointPowersOfTwo = true;
+        job.session.onCheckpoint = [&](const Checkpoint& c) {
             lastError = computeErrorMetrics(c.image, *reference);
             if (log) log->append(c.spp, c.seconds, lastError);
         };
     }
-    const SessionResult r = runSession(renderer, so, processStart);
+    const SessionResult r = runSession(renderer, job.session, processStart);
 
     const double samples = double(r.samplesTaken);
     const double rs = std::max(r.renderSeconds, 1e-9);
@@ -146,42 +131,15 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     if (reference)
         std::fprintf(stderr, "vkpath: error against %s: rmse %.6g, relMSE %.6g\n", a.reference.string().c_str(),
                      lastError.rmse, lastError.relmse);
-    for (const auto& o : outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
+    for (const auto& o : job.session.outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
     if (log) std::fprintf(stderr, "vkpath: wrote %s (%zu rows)\n", a.errorLog.string().c_str(), log->rows());
 
     if (!a.statsJson.empty()) {
-        st.version = VKPATH_VERSION;
-        st.scene = a.scene.string();
-        st.sampler = samplerName(a.sampler);
-        st.sequence = sequenceName(a.sequence);
-        st.lightPick = lightPickName(a.lightPick);
-        st.lightSampling = lightSamplingName(a.lightSampling);
-        st.solidAngleMinSize = a.lightSampling == LightSampling::Auto ? a.solidAngleMinSize : 0.0f;
-        st.workgroup = std::to_string(a.workgroupX) + "x" + std::to_string(a.workgroupY);
-        st.tileOrder = a.linearTiles ? "linear" : "scrambled";
-        st.variant = renderer.features().name();
-        st.fullVariant = a.fullVariant;
-        st.width = scene.camera.width;
-        st.height = scene.camera.height;
-        st.maxDepth = scene.render.maxDepth;
-        st.seed = scene.render.seed;
-        st.samplesPerDispatch = a.samplesPerDispatch;
-        st.spp = r.spp;
-        st.samplesTaken = r.samplesTaken;
-        st.adaptiveThreshold = a.adaptiveThreshold;
-        st.activePixels = r.activePixels;
-        st.sppRequested = scene.render.spp;
-        st.timeLimit = a.timeLimit;
-        st.rays = r.counters.rays;
-        st.firstBatchRays = r.firstBatchRays;
-        st.nonfinite = r.counters.nonfinite;
-        st.loopGuard = r.counters.loopGuard;
-        st.secondsFirstBatch = r.firstBatchSeconds;
-        st.secondsRender = r.renderSeconds;
-        st.secondsToFirstSample = r.firstSampleAt;
-        st.secondsCheckpoints = r.checkpointSeconds;
-        st.secondsOutput = r.outputSeconds;
-        st.checkpoints = r.checkpoints;
+        RunStats st = runStats(job, renderer.features().name(), r);
+        st.secondsSceneLoad = secondsSceneLoad;
+        st.secondsBvh = secondsBvh;
+        st.secondsSetup = secondsSetup;
+        st.secondsUpload = secondsUpload;
         st.sceneBufferBytes = renderer.sceneBufferBytes();
         rusage ru{};
         if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
@@ -204,20 +162,20 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     return kExitOk;
 }
 
-/// Bytes of the device buffers that hold the scene's geometry: 4-wide nodes, primitives,
-/// instances and (when the variant reads them) vertex attribute records (128 bytes per primitive).
-std::size_t geometryBytes(const FlatBvh& bvh, bool vertexAttributes) {
-    return bvh.wideNodes.size() * sizeof(gpu::GpuWideNode) + bvh.prims.size() * sizeof(gpu::GpuPrim) +
-           bvh.instances.size() * sizeof(gpu::GpuInstance) + (vertexAttributes ? bvh.prims.size() * 128 : 0);
+namespace {
+std::string megabytes(std::uint64_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f MB", double(bytes) / 1e6);
+    return buf;
 }
+}  // namespace
 
 int runInfo(const CliArgs& a) {
-    const Scene scene = loadWithOverrides(a);
+    const RenderJob job = makeJob(a);
+    const Scene& scene = job.scene;
     const FlatBvh bvh = buildSceneBvh(scene);
-    Features f = sceneFeatures(scene, a.sampler);
-    f.sequence = a.sequence;
-    f.lightSampling = a.lightSampling;
-    f.solidAngleMinSize = a.solidAngleMinSize;
+    const GpuArrays arrays = packGpuArrays(scene, bvh, job.options);
+    const Features& f = arrays.features;
     std::printf("scene        %s\n", a.scene.string().c_str());
     std::printf("image        %ux%u, %u spp, max depth %u, seed %u\n", scene.camera.width, scene.camera.height,
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);
@@ -230,10 +188,16 @@ int runInfo(const CliArgs& a) {
     std::printf("materials    %zu\n", scene.materials.size());
     std::printf("bvh          %zu nodes, %zu leaves, depth %u, SAH cost %.3f, built in %.2f ms\n", bvh.stats.nodeCount,
                 bvh.stats.leafCount, bvh.stats.maxDepth, bvh.stats.sahCost, bvh.stats.buildMs);
-    const std::size_t bytes = geometryBytes(bvh, f.vertexAttributes);
+    // Geometry on the device: the BVH nodes, the primitives, the instances and (when the variant
+    // reads them) the vertex-attribute records, as the packing step sizes them.
+    std::uint64_t geometry = 0;
+    for (const BufferSize& s : arrays.sizes())
+        if (s.binding->binding == VKP_BINDING_NODES || s.binding->binding == VKP_BINDING_PRIMS ||
+            s.binding->binding == VKP_BINDING_INSTANCES || (f.vertexAttributes && s.binding->binding == VKP_BINDING_ATTRIBUTES))
+            geometry += s.bytes;
     if (scene.instances.empty()) {
-        std::printf("instancing   none (%s): geometry on the device %.2f MB\n",
-                    a.instancing ? "no glTF mesh is shared by two nodes" : "--instancing flatten", bytes / 1e6);
+        std::printf("instancing   none (%s): geometry on the device %s\n",
+                    a.instancing ? "no glTF mesh is shared by two nodes" : "--instancing flatten", megabytes(geometry).c_str());
     } else {
         // Flattened, every instance carries its own copy of its mesh's triangles (and attribute
         // records), with about as many 4-wide nodes per triangle as this BVH has: an estimate.
@@ -243,16 +207,19 @@ int runInfo(const CliArgs& a) {
         std::size_t storedPrims = 0, instancedTriangles = 0;
         for (std::size_t n : meshPrims) storedPrims += n;
         for (const MeshInstance& inst : scene.instances) instancedTriangles += meshPrims[inst.mesh];
-        const double nodesPerPrim = double(bvh.wideNodes.size()) / double(std::max<std::size_t>(bvh.prims.size(), 1));
-        const double perPrim = sizeof(gpu::GpuPrim) + (f.vertexAttributes ? 128.0 : 0.0) + nodesPerPrim * sizeof(gpu::GpuWideNode);
-        const double flatBytes = double(bytes) - double(bvh.instances.size() * (sizeof(gpu::GpuInstance) + sizeof(gpu::GpuPrim))) +
+        const double nodesPerPrim = double(arrays.nodes.size()) / double(std::max<std::size_t>(arrays.prims.size(), 1));
+        const double perPrim = sizeof(gpu::GpuPrim) + (f.vertexAttributes ? gpu::ATTR_TEXELS * 16.0 : 0.0) +
+                               nodesPerPrim * sizeof(gpu::GpuWideNode);
+        const double flatBytes = double(geometry) - double(bvh.instances.size() * (sizeof(gpu::GpuInstance) + sizeof(gpu::GpuPrim))) +
                                  double(instancedTriangles - storedPrims) * perPrim;
         std::printf("instancing   %zu instances of %zu shared meshes (%zu triangles stored, %zu drawn), %zu top-level primitives\n",
                     scene.instances.size(), scene.meshes.size(), storedPrims, instancedTriangles + scene.shapes.size(),
                     bvh.stats.topPrimCount);
-        std::printf("memory       geometry on the device %.2f MB two-level (auto); flattened (--instancing flatten) about %.2f MB\n",
-                    bytes / 1e6, flatBytes / 1e6);
+        std::printf("memory       geometry on the device %s two-level (auto); flattened (--instancing flatten) about %.2f MB\n",
+                    megabytes(geometry).c_str(), flatBytes / 1e6);
     }
+    std::printf("device data  %s of scene buffers, %s of per-pixel buffers at %ux%u\n", megabytes(arrays.sceneBytes()).c_str(),
+                megabytes(arrays.pixelBytes()).c_str(), scene.camera.width, scene.camera.height);
     std::printf("variant      %s\n", f.name().c_str());
     return kExitOk;
 }

@@ -47,9 +47,10 @@ std::uint32_t updateActivePixels(std::vector<std::uint8_t>& active, const std::v
 }
 
 std::vector<std::uint32_t> activePixelList(const std::vector<std::uint8_t>& active, std::uint32_t width,
-                                           std::uint32_t height) {
+                                           std::uint32_t height, std::uint32_t firstRow, std::uint32_t rows) {
     std::vector<std::uint32_t> list;
-    for (std::uint32_t ty = 0; ty < height; ty += 8)
+    height = std::min(height, firstRow + std::min(rows, height));
+    for (std::uint32_t ty = firstRow; ty < height; ty += 8)
         for (std::uint32_t tx = 0; tx < width; tx += 8)
             for (std::uint32_t y = ty; y < std::min(ty + 8, height); ++y)
                 for (std::uint32_t x = tx; x < std::min(tx + 8, width); ++x)

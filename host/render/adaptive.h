@@ -41,9 +41,11 @@ std::uint32_t updateActivePixels(std::vector<std::uint8_t>& active, const std::v
                                  std::uint32_t width, std::uint32_t height, double threshold,
                                  std::uint32_t samplesDone);
 
-/// The active pixels' indices (y * width + x), 8x8 tile by tile (tiles in row order, pixels row by
-/// row inside a tile), so that the 64 lanes of a workgroup shade neighbouring pixels.
+/// The active pixels' indices (y * width + x) among rows [firstRow, firstRow + rows) (default: the
+/// whole image), 8x8 tile by tile (tiles in row order from firstRow, pixels row by row inside a
+/// tile), so that the 64 lanes of a workgroup shade neighbouring pixels. With firstRow a multiple of
+/// 8 a band's list is the run of the whole image's list that falls in it.
 std::vector<std::uint32_t> activePixelList(const std::vector<std::uint8_t>& active, std::uint32_t width,
-                                           std::uint32_t height);
+                                           std::uint32_t height, std::uint32_t firstRow = 0, std::uint32_t rows = ~0u);
 
 }  // namespace vkp

@@ -11,59 +11,6 @@
 
 namespace vkp {
 
-const char* samplerName(Sampler s) {
-    switch (s) {
-        case Sampler::Bsdf: return "bsdf";
-        case Sampler::Light: return "light";
-        case Sampler::Mixture: return "mixture";
-        default: return "mis";
-    }
-}
-
-bool parseSampler(const std::string& name, Sampler& out) {
-    if (name == "bsdf") out = Sampler::Bsdf;
-    else if (name == "light") out = Sampler::Light;
-    else if (name == "mixture") out = Sampler::Mixture;
-    else if (name == "mis") out = Sampler::Mis;
-    else return false;
-    return true;
-}
-
-const char* sequenceName(Sequence s) { return s == Sequence::Random ? "random" : "sobol"; }
-
-bool parseSequence(const std::string& name, Sequence& out) {
-    if (name == "random") out = Sequence::Random;
-    else if (name == "sobol") out = Sequence::Sobol;
-    else return false;
-    return true;
-}
-
-const char* lightPickName(LightPick p) { return p == LightPick::Uniform ? "uniform" : "power"; }
-
-bool parseLightPick(const std::string& name, LightPick& out) {
-    if (name == "power") out = LightPick::Power;
-    else if (name == "uniform") out = LightPick::Uniform;
-    else return false;
-    return true;
-}
-
-const char* lightSamplingName(LightSampling s) {
-    switch (s) {
-        case LightSampling::Area: return "area";
-        case LightSampling::SolidAngle: return "solid-angle";
-        case LightSampling::Auto: return "auto";
-    }
-    return "?";
-}
-
-bool parseLightSampling(const std::string& name, LightSampling& out) {
-    if (name == "auto") out = LightSampling::Auto;
-    else if (name == "solid-angle") out = LightSampling::SolidAngle;
-    else if (name == "area") out = LightSampling::Area;
-    else return false;
-    return true;
-}
-
 namespace {
 /// "a+b+c" of the names of the bits set in mask (names indexed by bit).
 template <std::size_t N>
@@ -132,11 +79,16 @@ std::string Features::name() const {
     return out;
 }
 
-Features sceneFeatures(const Scene& scene, Sampler sampler, bool full) {
+Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
     Features f;
-    f.sampler = sampler;
+    f.sampler = options.sampler;
+    f.sequence = options.sequence;
+    f.lightSampling = options.lightSampling;
+    f.solidAngleMinSize = options.solidAngleMinSize;
+    f.workgroupX = options.workgroupX;
+    f.workgroupY = options.workgroupY;
     const std::uint32_t surfaceKinds = bit(gpu::PRIM_SPHERE) | bit(gpu::PRIM_QUAD) | bit(gpu::PRIM_TRIANGLE);
-    if (full) {
+    if (options.fullVariant) {
         f.shapes = f.lights = surfaceKinds;
         f.materials = bit(gpu::MAT_TYPE_COUNT) - 1u;
         f.emitters = f.defocus = f.environment = f.environmentMap = true;

@@ -6,52 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "render/render_options.h"
 #include "scene/scene.h"
-#include "shared/kinds.h"
 
 namespace vkp {
-
-enum class Sampler : std::uint32_t {
-    Bsdf = gpu::SAMPLER_BSDF,
-    Light = gpu::SAMPLER_LIGHT,
-    Mixture = gpu::SAMPLER_MIXTURE,
-    Mis = gpu::SAMPLER_MIS
-};
-const char* samplerName(Sampler s);
-/// Every sampler, for tests and benchmarks that must cover them all.
-inline constexpr Sampler kAllSamplers[] = {Sampler::Bsdf, Sampler::Light, Sampler::Mixture, Sampler::Mis};
-/// "bsdf" | "light" | "mixture" | "mis" -> Sampler; false if unknown.
-bool parseSampler(const std::string& name, Sampler& out);
-
-/// Where a sample's random numbers come from (shaders/shared/sample_stream.h): independent hashed
-/// random numbers per dimension, or Owen-scrambled Sobol' points (the default).
-enum class Sequence : std::uint32_t { Random = gpu::SEQUENCE_RANDOM, Sobol = gpu::SEQUENCE_SOBOL };
-const char* sequenceName(Sequence s);
-/// "random" | "sobol" -> Sequence; false if unknown.
-bool parseSequence(const std::string& name, Sequence& out);
-
-/// How next-event estimation picks an emitter: in proportion to its power (default; alias table,
-/// render/light_table.h) or uniformly among the emitters (`--light-pick uniform`, for comparison).
-enum class LightPick : std::uint32_t { Power = 0, Uniform = 1 };
-const char* lightPickName(LightPick p);
-/// "power" | "uniform" -> LightPick; false if unknown.
-bool parseLightPick(const std::string& name, LightPick& out);
-
-/// How next-event estimation samples a point on a quad or triangle light: uniformly in the solid
-/// angle it subtends (Urena et al. 2013 for rectangles, Arvo 1995 for triangles) or uniformly in
-/// area (the book's). `Auto` (default) samples in solid angle only from points where the light
-/// looks at least Features::solidAngleMinSize large (shared/rect_sampling.h apparentSize), in area
-/// elsewhere; `SolidAngle` wherever the spherical warps are precise; `Area` everywhere (for
-/// comparison). `mixture` always samples area, as the book does.
-enum class LightSampling : std::uint32_t { SolidAngle = 0, Area = 1, Auto = 2 };
-const char* lightSamplingName(LightSampling s);
-/// "auto" | "solid-angle" | "area" -> LightSampling; false if unknown.
-bool parseLightSampling(const std::string& name, LightSampling& out);
-
-/// Default apparent size (sr: light area / squared distance to its centre) from which `auto`
-/// light sampling switches from area to solid-angle sampling. Measured at equal time on the bench
-/// scenes (README "Numbers on this machine", "Solid angle or area").
-inline constexpr float kSolidAngleMinSize = 0.1f;
 
 /// One specialization constant of the kernel: its constant_id, its GLSL name, its value (a bool
 /// as 0/1, a float as its bits) and what it adds to the variant's readable name ("" for nothing).
@@ -96,8 +54,10 @@ struct Features {
     std::string name() const;
 };
 
-/// The variant for `scene` rendered with `sampler`. `full` compiles in everything (the comparison
-/// pipeline of `--variant full`).
-Features sceneFeatures(const Scene& scene, Sampler sampler, bool full = false);
+/// The variant of the kernel that `scene` needs when rendered with `options`: what the scene uses
+/// (kinds, materials, lights, textures...) and the options that are specialization constants
+/// (sampler, sequence, light sampling, workgroup). options.fullVariant compiles in everything
+/// (`--variant full`, for comparison).
+Features sceneFeatures(const Scene& scene, const RenderOptions& options = {});
 
 }  // namespace vkp

@@ -18,7 +18,8 @@ static_assert(offsetof(GpuFrame, env) == 10 * 16 && offsetof(GpuFrame, envSize) 
 static_assert(sizeof(GpuInstance) == GPU_INSTANCE_TEXELS * 16, "GpuInstance: GPU_INSTANCE_TEXELS vec4 texels");
 static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) == 4 * 16 && offsetof(GpuInstance, o2w2) == 6 * 16,
               "GpuInstance texel order: info, world-to-object rows, object-to-world rows");
-static_assert(sizeof(GpuPush) == 2 * 16 && offsetof(GpuPush, adaptive) == 16, "GpuPush: two uvec4 (push constants)");
+static_assert(sizeof(GpuPush) == 3 * 16 && offsetof(GpuPush, adaptive) == 16 && offsetof(GpuPush, band) == 32,
+              "GpuPush: three uvec4 (push constants)");
 
 static_assert(MAT_TEX_TEXELS == 2 * TEX_SLOTS + 1 && MAT_TEX_ALPHA_TEXEL == 2 * TEX_SLOTS,
               "texture record: two texels per slot, then the alpha texel");

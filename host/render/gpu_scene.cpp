@@ -49,15 +49,14 @@ std::uint32_t tileStride(std::uint32_t n) {
     return std::uint32_t(s);
 }
 
-gpu::GpuFrame packFrame(const Scene& scene, LightPick pick, glm::uvec2 workgroup, bool linearTiles) {
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick, glm::uvec2 workgroup) {
     gpu::GpuFrame f{};
     packCamera(scene.camera, f);
     f.background = v4(scene.render.background);
     f.size = glm::uvec4(scene.camera.width, scene.camera.height, scene.render.maxDepth, scene.render.seed);
     f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), scene.render.rouletteDepth, emittingLightCount(scene), 0);
     const std::uint32_t groupsX = (scene.camera.width + workgroup.x - 1) / workgroup.x;
-    const std::uint32_t groupsY = (scene.camera.height + workgroup.y - 1) / workgroup.y;
-    f.tiles = glm::uvec4(groupsX, groupsX * groupsY, linearTiles ? 1u : tileStride(groupsX * groupsY), 0);
+    f.tiles = glm::uvec4(groupsX, 0, 0, 0);
     const double rot = glm::radians(double(scene.environment.rotateY));
     f.env = glm::vec4(float(std::cos(rot)), float(std::sin(rot)), float(envPickProbability(scene, pick)),
                       hasEnvironmentLight(scene) ? 1.0f : 0.0f);

@@ -13,14 +13,13 @@ namespace vkp {
 /// Fills origin, pixel00, pixelDu, pixelDv, defocusU, defocusV of `frame`.
 void packCamera(const Camera& cam, gpu::GpuFrame& frame);
 
-/// Stride s of the scrambled tile order (GpuFrame::tiles): coprime with n, n * s < 2^32.
+/// Stride s of the scrambled tile order (GpuPush::band, ::adaptive): coprime with n, n * s < 2^32.
 std::uint32_t tileStride(std::uint32_t n);
 
 /// Everything in GpuFrame for a render of scene at its (possibly overridden) settings; `pick`
 /// decides the environment's share of next-event estimation (envPickProbability); tiles of
-/// `workgroup` pixels, visited in scrambled order (stride tileStride) or row by row (`linearTiles`).
-gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power, glm::uvec2 workgroup = glm::uvec2(8, 8),
-                        bool linearTiles = false);
+/// `workgroup` pixels (their order within each band: GpuPush::band, render/renderer.cpp).
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power, glm::uvec2 workgroup = glm::uvec2(8, 8));
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
 

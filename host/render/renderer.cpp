@@ -2,19 +2,13 @@
 
 #include <algorithm>
 #include <cstring>
-#include <stdexcept>
 
-#include "bvh/flatten.h"
-#include "bvh/wide_pack.h"
 #include "core/errors.h"
 #include "pathtrace.spv.h"
-#include "render/environment.h"
 #include "render/adaptive.h"
-#include "render/ggx_albedo_table.h"
+#include "render/gpu_arrays.h"
 #include "render/gpu_scene.h"
 #include "render/kernel_bindings.h"
-#include "render/light_table.h"
-#include "render/texture_pack.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
@@ -30,11 +24,21 @@ vk::DescriptorType descriptorType(BindingKind k) {
     return vk::DescriptorType::eStorageBuffer;
 }
 
-template <class T>
-std::unique_ptr<GpuBuffer> uploadTexels(VulkanDevice& dev, const std::vector<T>& data) {
-    auto buf = std::make_unique<GpuBuffer>(dev, data.size() * sizeof(T), vk::BufferUsageFlagBits::eUniformTexelBuffer);
-    buf->upload(data.data(), data.size() * sizeof(T));
-    return buf;
+vk::BufferUsageFlags bufferUsage(BindingKind k) {
+    switch (k) {
+        case BindingKind::UniformBuffer: return vk::BufferUsageFlagBits::eUniformBuffer;
+        case BindingKind::UniformTexelBuffer: return vk::BufferUsageFlagBits::eUniformTexelBuffer;
+        case BindingKind::StorageBuffer: return vk::BufferUsageFlagBits::eStorageBuffer;
+    }
+    return vk::BufferUsageFlagBits::eStorageBuffer;
+}
+
+vk::Format texelFormat(TexelFormat f) {
+    switch (f) {
+        case TexelFormat::R32Float: return vk::Format::eR32Sfloat;
+        case TexelFormat::R32Uint: return vk::Format::eR32Uint;
+        default: return vk::Format::eR32G32B32A32Uint;
+    }
 }
 }  // namespace
 
@@ -61,167 +65,109 @@ Image PixelSums::varianceOfMean() const {
     return img;
 }
 
+namespace {
+/// The bindings that are per pixel: one buffer of each per band.
+bool perPixel(std::uint32_t binding) {
+    return binding == VKP_BINDING_ACCUM_SUM || binding == VKP_BINDING_ACCUM_SQ || binding == VKP_BINDING_DECISION ||
+           binding == VKP_BINDING_ACTIVE;
+}
+}  // namespace
+
 struct Renderer::Impl {
-    std::unique_ptr<GpuBuffer> frame, nodes, prims, materials, lights, sum, sumSq, counters, envTexels, envDist, decision, active;
-    std::unique_ptr<GpuBuffer> attributes, texInfo, texels, instances;
-    vk::raii::BufferView instancesView{nullptr};
-    vk::raii::BufferView nodesView{nullptr}, primsView{nullptr}, materialsView{nullptr}, lightsView{nullptr};
-    vk::raii::BufferView attributesView{nullptr}, texInfoView{nullptr}, texelsView{nullptr};
-    vk::raii::BufferView envTexelsView{nullptr}, envDistView{nullptr};
+    /// One band of rows with its own per-pixel buffers and descriptor set (the set's index).
+    struct BandBuffers {
+        Band band;
+        std::unique_ptr<GpuBuffer> sum, sumSq, decision, active;
+        std::uint32_t activeCount = 0;  ///< adaptive sampling: entries of `active`
+        GpuBuffer& at(std::uint32_t binding) {
+            return binding == VKP_BINDING_ACCUM_SUM ? *sum : binding == VKP_BINDING_ACCUM_SQ ? *sumSq
+                   : binding == VKP_BINDING_DECISION ? *decision : *active;
+        }
+    };
+    std::vector<std::unique_ptr<GpuBuffer>> shared;  ///< per binding; null for the per-pixel ones
+    std::vector<BandBuffers> bands;
+    std::vector<vk::raii::BufferView> views;  ///< the texel buffers' views
     std::unique_ptr<ComputePipeline> pipeline;
+    GpuBuffer& counters() { return *shared.at(VKP_BINDING_COUNTERS); }
 };
 
-std::uint64_t Renderer::sceneBufferBytes() const {
-    std::uint64_t n = 0;
-    for (const auto* b : {&impl_->nodes, &impl_->prims, &impl_->materials, &impl_->lights, &impl_->envTexels, &impl_->envDist,
-                          &impl_->attributes, &impl_->texInfo, &impl_->texels})
-        if (*b) n += (*b)->size();
-    return n;
-}
-
-Renderer::Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh, const RendererOptions& options)
+Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOptions& options, const DeviceLimits* limits)
     : impl_(std::make_unique<Impl>()),
       dev_(&device),
-      features_(sceneFeatures(scene, options.sampler, options.fullVariant)),
-      width_(scene.camera.width),
-      height_(scene.camera.height),
+      features_(arrays.features),
+      width_(arrays.width),
+      height_(arrays.height),
       spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1),
       autoSpd_(options.samplesPerDispatch == 0),
-      active_(scene.camera.width * scene.camera.height),
+      linearTiles_(options.linearTiles),
+      sceneBytes_(arrays.sceneBytes()),
+      active_(arrays.width * arrays.height),
       adaptiveThreshold_(options.adaptiveThreshold),
       adaptiveMinSpp_(options.adaptiveMinSpp) {
-    features_.sequence = options.sequence;
-    features_.lightSampling = options.lightSampling;
-    features_.solidAngleMinSize = options.solidAngleMinSize;
-    features_.workgroupX = options.workgroupX;
-    features_.workgroupY = options.workgroupY;
-    const DeviceInfo& limits = device.info();
-    if (options.workgroupX == 0 || options.workgroupY == 0 || options.workgroupX > limits.maxComputeWorkGroupSize[0] ||
-        options.workgroupY > limits.maxComputeWorkGroupSize[1] ||
-        options.workgroupX * options.workgroupY > limits.maxComputeWorkGroupInvocations)
-        throw VulkanError("workgroup " + std::to_string(options.workgroupX) + "x" + std::to_string(options.workgroupY) +
-                          " is beyond this device's limits (" + std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
-                          std::to_string(limits.maxComputeWorkGroupSize[1]) + ", " +
-                          std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations)");
-    if (bvh.instances.size() != scene.instances.size())
-        throw std::invalid_argument("Renderer: the BVH was not built with the scene's instances (use buildSceneBvh)");
-    const std::uint64_t texelLimit = device.info().maxTexelBufferElements;
-    // The kernel traverses the 4-wide layout (lib/traverse.glsl): FlatBvh::wideNodes, or collapsed here
-    // for a FlatBvh that came from flattenBvh alone.
-    const std::vector<gpu::GpuWideNode> collapsed = bvh.wideNodes.empty() ? buildWideNodes(bvh) : std::vector<gpu::GpuWideNode>{};
-    const std::vector<gpu::GpuWideNode>& wideNodes = bvh.wideNodes.empty() ? collapsed : bvh.wideNodes;
-    if (wideNodes.size() * gpu::GPU_WIDE_NODE_TEXELS > texelLimit || bvh.prims.size() * gpu::GPU_PRIM_TEXELS > texelLimit)
-        throw VulkanError("scene too large for this device: " + std::to_string(bvh.prims.size()) +
-                          " primitives need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
-    const EnvTables env = packEnvironment(scene);
-    if (env.texels.size() > texelLimit || env.distribution.size() > texelLimit)
-        throw VulkanError("environment map too large for this device: " + std::to_string(env.width) + "x" +
-                          std::to_string(env.height) + " needs " + std::to_string(env.distribution.size()) +
-                          " texels, more than maxTexelBufferElements = " + std::to_string(texelLimit));
-    // Textures and vertex attributes (lib/surface.glsl): only what the variant reads is uploaded
-    // in full; the others get a token texel.
-    TexturePack tex;
-    if (features_.textures || features_.alpha) tex = packTextures(scene);
-    if (tex.info.empty()) tex.info.assign(1, glm::uvec4(0));
-    if (tex.texels.empty()) tex.texels.assign(1, 0u);
-    std::vector<glm::uvec4> attributes(1, glm::uvec4(0));
-    if (features_.vertexAttributes) attributes = packVertexAttributes(scene, bvh);
-    if (const std::string problem = texelLimitProblem(scene, tex, attributes.size(), texelLimit); !problem.empty())
-        throw VulkanError(problem);
-    std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
-    for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) {
-        const bool topShape = (bvh.primMesh.empty() || bvh.primMesh[i] == 0) && bvh.primToShape[i] != FlatBvh::kNotAShape;
-        if (topShape) primOfShape[bvh.primToShape[i]] = i;
+    const DeviceLimits own = deviceLimits(device.info());
+    const DeviceLimits& lim = limits ? *limits : own;
+    if (const std::string problem = fitProblem(arrays, lim); !problem.empty()) throw DeviceError(problem);
+    // The read-only buffers once, uploaded; the per-pixel ones per band, zeroed below.
+    ComputePipelineDesc desc;
+    for (const BufferSize& size : arrays.sizes()) {
+        const KernelBinding& b = *size.binding;
+        desc.bindings.push_back(descriptorType(b.kind));
+        if (perPixel(b.binding)) {
+            impl_->shared.push_back(nullptr);
+            continue;
+        }
+        auto buffer = std::make_unique<GpuBuffer>(device, size.bytes, bufferUsage(b.kind));
+        if (const std::span<const std::byte> data = arrays.hostData(b.binding); !data.empty())
+            buffer->upload(data.data(), data.size());
+        impl_->shared.push_back(std::move(buffer));
     }
-    // Instances (two-level BVH): a token record when there are none (HAS_INSTANCES is then false).
-    std::vector<gpu::GpuInstance> instances = bvh.instances;
-    if (instances.empty()) instances.resize(1, gpu::GpuInstance{});
-    if (instances.size() * gpu::GPU_INSTANCE_TEXELS > texelLimit)
-        throw VulkanError("scene too large for this device: " + std::to_string(instances.size()) +
-                          " instances need more than maxTexelBufferElements = " + std::to_string(texelLimit) + " texels");
-
-    gpu::GpuFrame frame = packFrame(scene, options.lightPick, glm::uvec2(options.workgroupX, options.workgroupY), options.linearTiles);
-    // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
-    std::vector<glm::vec4> materialTexels;
-    for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
-        for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3}) materialTexels.push_back(t);
-    static_assert(gpu::GPU_MATERIAL_TEXELS == 4, "one push_back per GpuMaterial member");
-    frame.counts.w = std::uint32_t(materialTexels.size());
-    if (features_.hasMaterial(gpu::MAT_PBR)) {
-        const std::vector<glm::vec4>& table = ggxAlbedoTable();
-        materialTexels.insert(materialTexels.end(), table.begin(), table.end());
-    }
-    impl_->frame = std::make_unique<GpuBuffer>(device, sizeof(frame), vk::BufferUsageFlagBits::eUniformBuffer);
-    impl_->frame->upload(&frame, sizeof(frame));
-    impl_->nodes = uploadTexels(device, wideNodes);
-    impl_->prims = uploadTexels(device, bvh.prims);
-    impl_->materials = uploadTexels(device, materialTexels);
-    impl_->lights = uploadTexels(device, packLights(scene, primOfShape, options.lightPick));
-    impl_->nodesView = impl_->nodes->texelView();
-    impl_->primsView = impl_->prims->texelView();
-    impl_->materialsView = impl_->materials->texelView();
-    impl_->lightsView = impl_->lights->texelView();
-    impl_->envTexels = uploadTexels(device, env.texels);
-    impl_->envDist = uploadTexels(device, env.distribution);
-    impl_->envTexelsView = impl_->envTexels->texelView();
-    impl_->envDistView = impl_->envDist->texelView(vk::Format::eR32Sfloat);
-    impl_->attributes = uploadTexels(device, attributes);
-    impl_->texInfo = uploadTexels(device, tex.info);
-    impl_->texels = uploadTexels(device, tex.texels);
-    impl_->attributesView = impl_->attributes->texelView();
-    impl_->texInfoView = impl_->texInfo->texelView();
-    impl_->texelsView = impl_->texels->texelView(vk::Format::eR32Uint);
-    impl_->instances = uploadTexels(device, instances);
-    impl_->instancesView = impl_->instances->texelView();
-
-    // Two vec4 per pixel: the sum and its compensation (shaders/shared/compensated_sum.h).
-    const std::size_t pixelBytes = std::size_t(width_) * height_ * 2 * 4 * sizeof(float);
-    impl_->sum = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
-    impl_->sumSq = std::make_unique<GpuBuffer>(device, pixelBytes, vk::BufferUsageFlagBits::eStorageBuffer);
-    impl_->counters = std::make_unique<GpuBuffer>(device, gpu::COUNTER_COUNT * 4, vk::BufferUsageFlagBits::eStorageBuffer);
-    // Adaptive sampling: decision-stream sums and the active-pixel list (a token size when off).
-    const std::size_t pixels = std::size_t(width_) * height_;
-    impl_->decision = std::make_unique<GpuBuffer>(device, adaptive() ? pixelBytes : 16, vk::BufferUsageFlagBits::eStorageBuffer);
-    impl_->active = std::make_unique<GpuBuffer>(device, adaptive() ? pixels * 4 : 16, vk::BufferUsageFlagBits::eStorageBuffer);
-    if (adaptive()) {
-        activeMask_.assign(pixels, 1);
-        const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_);
-        impl_->active->upload(list.data(), list.size() * 4);
+    if (adaptive()) activeMask_.assign(std::size_t(width_) * height_, 1);
+    for (const Band& band : planBands(arrays, lim)) {
+        Impl::BandBuffers bb;
+        bb.band = band;
+        const std::uint64_t pixels = std::uint64_t(width_) * band.rows;
+        auto make = [&](std::uint32_t binding) {
+            return std::make_unique<GpuBuffer>(device, pixels * arrays.bytesPerPixel(binding), vk::BufferUsageFlagBits::eStorageBuffer);
+        };
+        bb.sum = make(VKP_BINDING_ACCUM_SUM);
+        bb.sumSq = make(VKP_BINDING_ACCUM_SQ);
+        bb.decision = make(VKP_BINDING_DECISION);  // 16-byte tokens without adaptive sampling
+        bb.active = make(VKP_BINDING_ACTIVE);
+        if (adaptive()) {
+            const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, band.firstRow, band.rows);
+            bb.active->upload(list.data(), list.size() * 4);
+            bb.activeCount = std::uint32_t(list.size());
+        }
+        impl_->bands.push_back(std::move(bb));
     }
     device.submitAndWait([&](vk::raii::CommandBuffer& cmd) {
-        cmd.fillBuffer(impl_->decision->buffer(), 0, VK_WHOLE_SIZE, 0);
-        cmd.fillBuffer(impl_->sum->buffer(), 0, VK_WHOLE_SIZE, 0);
-        cmd.fillBuffer(impl_->sumSq->buffer(), 0, VK_WHOLE_SIZE, 0);
-        cmd.fillBuffer(impl_->counters->buffer(), 0, VK_WHOLE_SIZE, 0);
+        cmd.fillBuffer(impl_->counters().buffer(), 0, VK_WHOLE_SIZE, 0);
+        for (Impl::BandBuffers& bb : impl_->bands)
+            for (GpuBuffer* b : {bb.sum.get(), bb.sumSq.get(), bb.decision.get()}) cmd.fillBuffer(b->buffer(), 0, VK_WHOLE_SIZE, 0);
     });
 
-    ComputePipelineDesc desc;
     desc.spirv = std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]));
-    for (const KernelBinding& b : kKernelBindings) desc.bindings.push_back(descriptorType(b.kind));
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
+    desc.descriptorSets = std::uint32_t(impl_->bands.size());
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
-    auto& p = *impl_->pipeline;
-    p.bindBuffer(VKP_BINDING_FRAME, impl_->frame->buffer());
-    p.bindTexelView(VKP_BINDING_NODES, *impl_->nodesView);
-    p.bindTexelView(VKP_BINDING_PRIMS, *impl_->primsView);
-    p.bindTexelView(VKP_BINDING_MATERIALS, *impl_->materialsView);
-    p.bindTexelView(VKP_BINDING_LIGHTS, *impl_->lightsView);
-    p.bindBuffer(VKP_BINDING_ACCUM_SUM, impl_->sum->buffer());
-    p.bindBuffer(VKP_BINDING_ACCUM_SQ, impl_->sumSq->buffer());
-    p.bindBuffer(VKP_BINDING_COUNTERS, impl_->counters->buffer());
-    p.bindTexelView(VKP_BINDING_ENV_TEXELS, *impl_->envTexelsView);
-    p.bindTexelView(VKP_BINDING_ENV_DIST, *impl_->envDistView);
-    p.bindBuffer(VKP_BINDING_DECISION, impl_->decision->buffer());
-    p.bindBuffer(VKP_BINDING_ACTIVE, impl_->active->buffer());
-    p.bindTexelView(VKP_BINDING_ATTRIBUTES, *impl_->attributesView);
-    p.bindTexelView(VKP_BINDING_TEX_INFO, *impl_->texInfoView);
-    p.bindTexelView(VKP_BINDING_TEXELS, *impl_->texelsView);
-    p.bindTexelView(VKP_BINDING_INSTANCES, *impl_->instancesView);
+    impl_->views.reserve(std::size(kKernelBindings));  // views are bound by handle below
+    for (const KernelBinding& b : kKernelBindings)
+        if (b.kind == BindingKind::UniformTexelBuffer) impl_->views.push_back(impl_->shared.at(b.binding)->texelView(texelFormat(b.format)));
+    for (std::uint32_t set = 0; set < impl_->bands.size(); ++set) {
+        std::size_t view = 0;
+        for (const KernelBinding& b : kKernelBindings) {
+            if (b.kind == BindingKind::UniformTexelBuffer) impl_->pipeline->bindTexelView(b.binding, *impl_->views[view++], set);
+            else if (perPixel(b.binding)) impl_->pipeline->bindBuffer(b.binding, impl_->bands[set].at(b.binding).buffer(), set);
+            else impl_->pipeline->bindBuffer(b.binding, impl_->shared.at(b.binding)->buffer(), set);
+        }
+    }
     device.instance().throwIfValidationMessages("while setting up the renderer");
 }
 
 Renderer::~Renderer() = default;
+
+std::uint32_t Renderer::bandCount() const { return std::uint32_t(impl_->bands.size()); }
 
 void Renderer::addSamples(std::uint32_t count) {
     // Adaptive decisions are taken at fixed sample counts (adaptiveMinSpp, then every
@@ -242,29 +188,35 @@ void Renderer::addSamples(std::uint32_t count) {
 }
 
 void Renderer::submitSamples(std::uint32_t count) {
-    // With adaptive sampling: 1D list of the active pixels, one per invocation, slots scrambled.
     const std::uint32_t perGroup = features_.workgroupX * features_.workgroupY;
-    const std::uint32_t groups = (active_ + perGroup - 1) / perGroup;
-    const std::uint32_t groupsX = std::min<std::uint32_t>(groups, 4096);
-    const std::uint32_t groupsY = (groups + groupsX - 1) / groupsX;
-    const glm::uvec4 adaptivePush = adaptive() ? glm::uvec4(active_, groups, tileStride(groups), groupsX) : glm::uvec4(0);
+    const std::uint32_t groupsX = (width_ + features_.workgroupX - 1) / features_.workgroupX;
     try {
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
-            cmd.fillBuffer(impl_->counters->buffer(), gpu::COUNTER_MAX_PASSES * 4, 4, 0);
+            cmd.fillBuffer(impl_->counters().buffer(), gpu::COUNTER_MAX_PASSES * 4, 4, 0);
             vk::MemoryBarrier mb{};
             mb.srcAccessMask = vk::AccessFlagBits::eTransferWrite;
             mb.dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite;
             cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb,
                                 nullptr, nullptr);
-            for (std::uint32_t s = 0; s < count; s += spd_) {
+            for (std::uint32_t set = 0; set < impl_->bands.size(); ++set) {
+                const Impl::BandBuffers& bb = impl_->bands[set];
                 gpu::GpuPush push{};
-                push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
-                push.adaptive = adaptivePush;
-                if (adaptive())
-                    impl_->pipeline->recordDispatch(cmd, groupsX, groupsY, &push, sizeof(push));
-                else
-                    impl_->pipeline->recordDispatch(cmd, (width_ + features_.workgroupX - 1) / features_.workgroupX,
-                                                    (height_ + features_.workgroupY - 1) / features_.workgroupY, &push, sizeof(push));
+                const std::uint32_t groupsY = (bb.band.rows + features_.workgroupY - 1) / features_.workgroupY;
+                const std::uint32_t tiles = groupsX * groupsY;
+                push.band = glm::uvec4(bb.band.firstRow, bb.band.rows, tiles, linearTiles_ ? 1u : tileStride(tiles));
+                // With adaptive sampling: the band's list of active pixels, one per invocation, slots scrambled.
+                std::uint32_t dispatchX = groupsX, dispatchY = groupsY;
+                if (adaptive()) {
+                    if (bb.activeCount == 0) continue;
+                    const std::uint32_t groups = (bb.activeCount + perGroup - 1) / perGroup;
+                    dispatchX = std::min<std::uint32_t>(groups, kAdaptiveGroupsPerRow);
+                    dispatchY = (groups + dispatchX - 1) / dispatchX;
+                    push.adaptive = glm::uvec4(bb.activeCount, groups, tileStride(groups), dispatchX);
+                }
+                for (std::uint32_t s = 0; s < count; s += spd_) {
+                    push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
+                    impl_->pipeline->recordDispatch(cmd, dispatchX, dispatchY, &push, sizeof(push), set);
+                }
             }
         });
     } catch (const vk::SystemError& e) {
@@ -274,7 +226,7 @@ void Renderer::submitSamples(std::uint32_t count) {
     taken_ += std::uint64_t(count) * active_;
     dev_->instance().throwIfValidationMessages("while rendering");
     std::uint32_t raw[gpu::COUNTER_COUNT];
-    impl_->counters->download(raw, sizeof(raw));
+    impl_->counters().download(raw, sizeof(raw));
     maxPasses_ = raw[gpu::COUNTER_MAX_PASSES];
     if (autoSpd_) {
         // Passes grow about linearly with the samples per dispatch: aim the busiest invocation at
@@ -289,12 +241,16 @@ void Renderer::submitSamples(std::uint32_t count) {
 
 void Renderer::updateAdaptive() {
     std::vector<float> decision(std::size_t(width_) * height_ * 8);
-    impl_->decision->download(decision.data(), decision.size() * sizeof(float));
+    for (Impl::BandBuffers& bb : impl_->bands)
+        bb.decision->download(decision.data() + std::size_t(bb.band.firstRow) * width_ * 8,
+                              std::size_t(bb.band.rows) * width_ * 8 * sizeof(float));
     const std::uint32_t before = active_;
     active_ = updateActivePixels(activeMask_, decision, width_, height_, adaptiveThreshold_, done_);
-    if (active_ != before && active_ > 0) {
-        const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_);
-        impl_->active->upload(list.data(), list.size() * 4);
+    if (active_ == before || active_ == 0) return;
+    for (Impl::BandBuffers& bb : impl_->bands) {
+        const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, bb.band.firstRow, bb.band.rows);
+        if (!list.empty()) bb.active->upload(list.data(), list.size() * 4);
+        bb.activeCount = std::uint32_t(list.size());
     }
 }
 
@@ -304,21 +260,23 @@ PixelSums Renderer::readSums() {
     s.height = height_;
     const std::size_t pixels = std::size_t(width_) * height_;
     std::vector<float> raw(pixels * 8);
-    // Combines each pixel's (hi, lo) pair in double (shaders/lib/bindings.glsl).
-    auto combine = [&](GpuBuffer& buffer, std::vector<double>& out) {
-        buffer.download(raw.data(), raw.size() * sizeof(float));
+    // Combines each pixel's (hi, lo) pair in double (shared/compensated_sum.h), band by band.
+    auto combine = [&](std::uint32_t binding, std::vector<double>& out) {
+        for (Impl::BandBuffers& bb : impl_->bands)
+            bb.at(binding).download(raw.data() + std::size_t(bb.band.firstRow) * width_ * 8,
+                                    std::size_t(bb.band.rows) * width_ * 8 * sizeof(float));
         out.resize(pixels * 4);
         for (std::size_t i = 0; i < pixels; ++i)
             for (int c = 0; c < 4; ++c) out[4 * i + c] = double(raw[8 * i + c]) + double(raw[8 * i + 4 + c]);
     };
-    combine(*impl_->sum, s.sum);
-    combine(*impl_->sumSq, s.sumSq);
+    combine(VKP_BINDING_ACCUM_SUM, s.sum);
+    combine(VKP_BINDING_ACCUM_SQ, s.sumSq);
     return s;
 }
 
 RenderCounters Renderer::counters() {
     std::uint32_t raw[gpu::COUNTER_COUNT];
-    impl_->counters->download(raw, sizeof(raw));
+    impl_->counters().download(raw, sizeof(raw));
     RenderCounters c;
     c.nonfinite = raw[gpu::COUNTER_NONFINITE];
     c.rays = (std::uint64_t(raw[gpu::COUNTER_RAYS_HI]) << 32) | raw[gpu::COUNTER_RAYS_LO];

@@ -1,5 +1,6 @@
-// The progressive renderer: uploads a scene, owns the accumulation buffers, and adds samples per
-// pixel batch after batch. It knows nothing of files, progress bars or time limits (render/session).
+// The progressive renderer: uploads the packed arrays of a render (render/gpu_arrays.h), owns the
+// accumulation buffers, and adds samples per pixel batch after batch. It knows nothing of files,
+// progress bars or time limits (render/session.h), nor of device-side sizes (render/gpu_arrays.h).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -7,34 +8,13 @@
 
 #include "core/image.h"
 #include "render/features.h"
-#include "scene/scene.h"
+#include "render/render_options.h"
 
 namespace vkp {
 
 class VulkanDevice;
-struct FlatBvh;
-
-struct RendererOptions {
-    Sampler sampler = Sampler::Mis;
-    Sequence sequence = Sequence::Sobol;  ///< where samples' random numbers come from (`--sequence`)
-    bool fullVariant = false;              ///< compile every feature in (`--variant full`)
-    LightPick lightPick = LightPick::Power;  ///< how NEE picks an emitter (`--light-pick`)
-    LightSampling lightSampling = LightSampling::Auto;  ///< NEE on quads/triangles (`--light-sampling`)
-    float solidAngleMinSize = kSolidAngleMinSize;       ///< Auto's switch, sr (`--solid-angle-min`)
-    /// Workgroup size of the kernel (x * y invocations, each one pixel) and the order its tiles are
-    /// visited in: scrambled (default; balances lavapipe's threads) or row by row (`--tile-order
-    /// linear`). Neither changes the image, only the speed.
-    std::uint32_t workgroupX = 8, workgroupY = 8;
-    bool linearTiles = false;
-    /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
-    /// invocation at half of lavapipe's loop budget, measured after every submission.
-    std::uint32_t samplesPerDispatch = 0;
-    /// Adaptive sampling (render/adaptive.h): a pixel stops receiving samples once its estimated
-    /// relative standard error is <= this (0 = off: every pixel gets every sample).
-    double adaptiveThreshold = 0.0;
-    /// Samples every pixel receives before the first adaptive decision.
-    std::uint32_t adaptiveMinSpp = 64;
-};
+struct GpuArrays;
+struct DeviceLimits;
 
 /// Totals since the render began.
 struct RenderCounters {
@@ -56,8 +36,14 @@ struct PixelSums {
 
 class Renderer {
 public:
-    /// Uploads `scene` (with its BVH) and builds the pipeline variant for it.
-    Renderer(VulkanDevice& device, const Scene& scene, const FlatBvh& bvh, const RendererOptions& options);
+    /// Uploads `arrays` (packGpuArrays of the scene and `options`) and builds the pipeline variant
+    /// they name. Refuses a render that does not fit the device before allocating anything: throws
+    /// DeviceError with fitProblem's one line. An image whose accumulation buffers exceed one
+    /// storage-buffer binding is rendered in bands of rows (planBands), each with buffers of its
+    /// own; the sums do not depend on the split. `limits` (tests only): pretend the device has
+    /// these limits instead of its own (to force bands on a small image).
+    Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOptions& options,
+             const DeviceLimits* limits = nullptr);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -82,14 +68,16 @@ public:
     std::uint32_t samplesPerDispatch() const { return spd_; }
     /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
     std::uint32_t maxPassesLastBatch() const { return maxPasses_; }
+    /// Bands of rows the image is rendered in (1 unless it exceeds the device's binding range).
+    std::uint32_t bandCount() const;
 
     PixelSums readSums();
     Image image() { return readSums().mean(); }
     RenderCounters counters();
     const Features& features() const { return features_; }
-    /// Bytes of the scene's device buffers: BVH nodes, primitives, materials, lights, environment,
-    /// vertex attributes and textures (not the per-pixel accumulation buffers).
-    std::uint64_t sceneBufferBytes() const;
+    /// Bytes of the scene's device buffers: every read-only buffer (GpuArrays::sceneBytes; not the
+    /// per-pixel accumulation buffers).
+    std::uint64_t sceneBufferBytes() const { return sceneBytes_; }
 
 private:
     struct Impl;
@@ -97,7 +85,8 @@ private:
     VulkanDevice* dev_;
     Features features_;
     std::uint32_t width_, height_, spd_;
-    bool autoSpd_;
+    bool autoSpd_, linearTiles_;
+    std::uint64_t sceneBytes_ = 0;
     std::uint32_t done_ = 0;
     std::uint32_t maxPasses_ = 0;
     std::uint64_t taken_ = 0;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "render/render_job.h"
 
 namespace vkp {
 
@@ -64,6 +65,44 @@ std::string jsonString(const std::string& s) {
         } else r += char(c);
     }
     return r + "\"";
+}
+
+RunStats runStats(const RenderJob& job, const std::string& variant, const SessionResult& r) {
+    const RenderOptions& o = job.options;
+    RunStats st;
+    st.version = VKPATH_VERSION;
+    st.scene = job.sceneFile.string();
+    st.sampler = samplerName(o.sampler);
+    st.sequence = sequenceName(o.sequence);
+    st.lightPick = lightPickName(o.lightPick);
+    st.lightSampling = lightSamplingName(o.lightSampling);
+    st.solidAngleMinSize = o.lightSampling == LightSampling::Auto ? o.solidAngleMinSize : 0.0f;
+    st.workgroup = std::to_string(o.workgroupX) + "x" + std::to_string(o.workgroupY);
+    st.tileOrder = o.linearTiles ? "linear" : "scrambled";
+    st.variant = variant;
+    st.fullVariant = o.fullVariant;
+    st.width = job.scene.camera.width;
+    st.height = job.scene.camera.height;
+    st.maxDepth = job.scene.render.maxDepth;
+    st.seed = job.scene.render.seed;
+    st.samplesPerDispatch = o.samplesPerDispatch;
+    st.adaptiveThreshold = o.adaptiveThreshold;
+    st.sppRequested = job.session.spp;
+    st.timeLimit = job.session.timeLimit;
+    st.spp = r.spp;
+    st.samplesTaken = r.samplesTaken;
+    st.activePixels = r.activePixels;
+    st.rays = r.counters.rays;
+    st.firstBatchRays = r.firstBatchRays;
+    st.nonfinite = r.counters.nonfinite;
+    st.loopGuard = r.counters.loopGuard;
+    st.secondsFirstBatch = r.firstBatchSeconds;
+    st.secondsRender = r.renderSeconds;
+    st.secondsToFirstSample = r.firstSampleAt;
+    st.secondsCheckpoints = r.checkpointSeconds;
+    st.secondsOutput = r.outputSeconds;
+    st.checkpoints = r.checkpoints;
+    return st;
 }
 
 std::string runStatsJson(const RunStats& s) {

@@ -1,5 +1,5 @@
 // The numbers of one render, written by `vkpath render --stats-json FILE` for scripts (the
-// benchmark suite, tools/bench). The keys are documented in README "Benchmarks".
+// benchmark suite, tools/bench). The keys are documented in docs/performance.md "Measuring one render".
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -61,6 +61,14 @@ struct RunStats {
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }
     std::uint64_t samples() const { return samplesTaken ? samplesTaken : pixels() * spp; }
 };
+
+struct RenderJob;
+struct SessionResult;
+
+/// The stats of a finished render: what `job` asked for and what the session did (`variant`: the
+/// pipeline's Features::name). The times of the steps before the session, the device, the memory
+/// and the error are the caller's to fill.
+RunStats runStats(const RenderJob& job, const std::string& variant, const SessionResult& result);
 
 /// The stats as a JSON object (pretty-printed, keys in a fixed order, non-finite numbers as null).
 /// Top-level keys scripts may rely on: spp, samples, rays, seconds_total, seconds_render,

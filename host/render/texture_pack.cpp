@@ -149,27 +149,6 @@ TexturePack packTextures(const Scene& scene) {
     return out;
 }
 
-std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::size_t attributeTexels, std::uint64_t limit) {
-    const std::string tail = ", more than this device's maxTexelBufferElements = " + std::to_string(limit);
-    if (pack.texels.size() > limit || pack.info.size() > limit) {
-        std::size_t big = 0;
-        for (std::size_t i = 1; i < scene.images.size(); ++i)
-            if (std::uint64_t(scene.images[i].width) * scene.images[i].height >
-                std::uint64_t(scene.images[big].width) * scene.images[big].height)
-                big = i;
-        std::string largest;
-        if (!scene.images.empty())
-            largest = ", the largest \"" + scene.images[big].name + "\" " + std::to_string(scene.images[big].width) + "x" +
-                      std::to_string(scene.images[big].height);
-        return scene.path.string() + ": textures: " + std::to_string(scene.images.size()) + " images need " +
-               std::to_string(pack.texels.size()) + " texels" + largest + tail;
-    }
-    if (attributeTexels > limit)
-        return scene.path.string() + ": the vertex attributes (UVs, normals, tangents) of the scene's primitives need " +
-               std::to_string(attributeTexels) + " texels" + tail;
-    return {};
-}
-
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh) {
     std::vector<glm::uvec4> out(std::max<std::size_t>(bvh.primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
     std::vector<glm::uvec4> uv1Records;  // appended after the primitive records

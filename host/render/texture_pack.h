@@ -45,11 +45,6 @@ TexturePack packTextures(const Scene& scene);
 /// (c2, 0, 0), per triangle that has TEXCOORD_1 (only scenes that have it pay for it).
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh);
 
-/// Empty if the packed textures (pack) and vertex-attribute records (attributeTexels texels) fit
-/// texel buffers of at most `limit` elements (maxTexelBufferElements); else the one line that
-/// refuses the scene, naming its file, the counts and the largest image.
-std::string texelLimitProblem(const Scene& scene, const TexturePack& pack, std::size_t attributeTexels, std::uint64_t limit);
-
 /// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).
 bool sceneHasTextures(const Scene& scene);
 /// True if some kernel material of a shape reads a KHR_materials_specular texture

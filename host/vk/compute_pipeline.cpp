@@ -1,5 +1,6 @@
 #include "vk/compute_pipeline.h"
 
+#include <algorithm>
 #include <map>
 
 namespace vkp {
@@ -56,24 +57,26 @@ ComputePipeline::ComputePipeline(VulkanDevice& dev, const ComputePipelineDesc& d
     pipeline_ = vk::raii::Pipeline(device, nullptr, cpci);
 
     std::vector<vk::DescriptorPoolSize> sizes;
-    for (auto [t, n] : counts) sizes.push_back(vk::DescriptorPoolSize{t, n});
+    const std::uint32_t sets = std::max<std::uint32_t>(desc.descriptorSets, 1);
+    for (auto [t, n] : counts) sizes.push_back(vk::DescriptorPoolSize{t, n * sets});
     vk::DescriptorPoolCreateInfo dpci{};
     dpci.flags = vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet;
-    dpci.maxSets = 1;
+    dpci.maxSets = sets;
     dpci.poolSizeCount = std::uint32_t(sizes.size());
     dpci.pPoolSizes = sizes.data();
     pool_ = vk::raii::DescriptorPool(device, dpci);
+    const std::vector<vk::DescriptorSetLayout> layouts(sets, rawSet);
     vk::DescriptorSetAllocateInfo dsai{};
     dsai.descriptorPool = *pool_;
-    dsai.descriptorSetCount = 1;
-    dsai.pSetLayouts = &rawSet;
-    set_ = std::move(vk::raii::DescriptorSets(device, dsai).front());
+    dsai.descriptorSetCount = sets;
+    dsai.pSetLayouts = layouts.data();
+    for (auto& set : vk::raii::DescriptorSets(device, dsai)) sets_.push_back(std::move(set));
 }
 
-void ComputePipeline::bindBuffer(std::uint32_t b, vk::Buffer buffer) {
+void ComputePipeline::bindBuffer(std::uint32_t b, vk::Buffer buffer, std::uint32_t set) {
     vk::DescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
     vk::WriteDescriptorSet w{};
-    w.dstSet = *set_;
+    w.dstSet = *sets_.at(set);
     w.dstBinding = b;
     w.descriptorCount = 1;
     w.descriptorType = types_.at(b);
@@ -81,9 +84,9 @@ void ComputePipeline::bindBuffer(std::uint32_t b, vk::Buffer buffer) {
     dev_->device().updateDescriptorSets(w, nullptr);
 }
 
-void ComputePipeline::bindTexelView(std::uint32_t b, vk::BufferView view) {
+void ComputePipeline::bindTexelView(std::uint32_t b, vk::BufferView view, std::uint32_t set) {
     vk::WriteDescriptorSet w{};
-    w.dstSet = *set_;
+    w.dstSet = *sets_.at(set);
     w.dstBinding = b;
     w.descriptorCount = 1;
     w.descriptorType = types_.at(b);
@@ -92,9 +95,9 @@ void ComputePipeline::bindTexelView(std::uint32_t b, vk::BufferView view) {
 }
 
 void ComputePipeline::recordDispatch(vk::raii::CommandBuffer& cmd, std::uint32_t groupsX, std::uint32_t groupsY, const void* push,
-                                     std::uint32_t pushBytes) const {
+                                     std::uint32_t pushBytes, std::uint32_t set) const {
     cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
-    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, {*set_}, {});
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, {*sets_.at(set)}, {});
     if (pushBytes)
         cmd.pushConstants<std::uint8_t>(*layout_, vk::ShaderStageFlagBits::eCompute, 0,
                                         vk::ArrayProxy<const std::uint8_t>(pushBytes, static_cast<const std::uint8_t*>(push)));

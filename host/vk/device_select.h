@@ -21,9 +21,13 @@ struct DeviceInfo {
     std::optional<std::uint32_t> computeQueueFamily;  ///< a family with VK_QUEUE_COMPUTE_BIT
     std::uint32_t maxTexelBufferElements = 0;
     std::uint32_t maxUniformBufferRange = 0;
+    std::uint32_t maxStorageBufferRange = 0;  ///< bytes one storage-buffer binding may span
     std::uint32_t maxPushConstantsSize = 0;
     std::uint32_t maxComputeWorkGroupInvocations = 0;
-    std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};  ///< x, y
+    std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};   ///< x, y
+    std::uint32_t maxComputeWorkGroupCount[2] = {0, 0};  ///< x, y
+    std::uint64_t maxMemoryAllocationSize = 0;  ///< bytes of one allocation (Vulkan 1.1; 0: not reported)
+    std::uint64_t deviceLocalBytes = 0;         ///< size of the largest device-local memory heap
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer
     bool bufferDeviceAddress = false;  ///< VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (optional)
 };

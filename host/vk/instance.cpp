@@ -1,5 +1,7 @@
 #include "vk/instance.h"
 
+#include <algorithm>
+
 #include <cstring>
 
 #include "core/errors.h"
@@ -40,15 +42,24 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
     d.apiVersion = props.apiVersion;
     d.maxTexelBufferElements = props.limits.maxTexelBufferElements;
     d.maxUniformBufferRange = props.limits.maxUniformBufferRange;
+    d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxPushConstantsSize = props.limits.maxPushConstantsSize;
     d.maxComputeWorkGroupInvocations = props.limits.maxComputeWorkGroupInvocations;
     d.maxComputeWorkGroupSize[0] = props.limits.maxComputeWorkGroupSize[0];
     d.maxComputeWorkGroupSize[1] = props.limits.maxComputeWorkGroupSize[1];
+    d.maxComputeWorkGroupCount[0] = props.limits.maxComputeWorkGroupCount[0];
+    d.maxComputeWorkGroupCount[1] = props.limits.maxComputeWorkGroupCount[1];
+    const vk::PhysicalDeviceMemoryProperties mem = pd.getMemoryProperties();
+    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+        if (mem.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
+            d.deviceLocalBytes = std::max<std::uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[i].size);
     if (props.apiVersion >= VK_API_VERSION_1_2) {
-        auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+        auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
+                                       vk::PhysicalDeviceMaintenance3Properties>();
         const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
         d.driverName = drv.driverName.data();
         d.driverInfo = drv.driverInfo.data();
+        d.maxMemoryAllocationSize = chain.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize;
         auto features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features>();
         d.bufferDeviceAddress = features.get<vk::PhysicalDeviceVulkan12Features>().bufferDeviceAddress;
     }

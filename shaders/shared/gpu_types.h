@@ -80,8 +80,8 @@ struct GpuFrame {
     uvec4 counts;     // x: number of sampled objects (lights), y: Russian-roulette start depth,
                       // z: number of them that emit (power-proportional picks need > 0),
                       // w: texel of the GGX albedo table in the materials buffer (after the materials)
-    uvec4 tiles;      // x: workgroups per row, y: workgroups in all, z: tile stride (coprime
-                      // with y, y * z < 2^32): workgroup g renders tile (g * z) mod y, w: reserved
+    uvec4 tiles;      // x: workgroups per row of the image (tiles of workgroup size); y, z, w: 0
+                      // (the tiles of each band and their order: GpuPush::band)
     vec4 env;         // environment light (lib/environment.glsl): x, y: cos, sin of rotate_y;
                       // z: probability that next-event estimation picks the environment instead
                       // of an emitter (host/render/environment.h); w: 1 if escaping rays see
@@ -90,15 +90,19 @@ struct GpuFrame {
                       // background is the environment); z, w: 0
 };
 
-// Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel.
-// With adaptive sampling (host/render/adaptive.h) a dispatch covers only the active pixels, listed
-// in the active-pixel buffer: workgroup g (= y * adaptive.w + x) takes the 64 list entries of slot
-// (g * adaptive.z) mod adaptive.y, so lavapipe's per-thread runs of workgroups spread over the image.
+// Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel
+// of one band of rows (host/render/gpu_arrays.h planBands; the whole image unless its
+// accumulation buffers exceed the device's storage-buffer range). With adaptive sampling
+// (host/render/adaptive.h) a dispatch covers only the band's active pixels, listed in the
+// active-pixel buffer: workgroup g (= y * adaptive.w + x) takes the entries of slot
+// (g * adaptive.z) mod adaptive.y, so lavapipe's per-thread runs of workgroups spread over the band.
 struct GpuPush {
     uvec4 batch;     // x: sampleStart, y: sampleCount, z, w: reserved
-    uvec4 adaptive;  // x: active pixels listed (0: adaptive sampling off, every pixel, frame.tiles),
+    uvec4 adaptive;  // x: active pixels listed (0: adaptive sampling off, every pixel of the band),
                      // y: workgroups with work, z: slot stride (coprime with y, y * z < 2^32),
                      // w: workgroups per row of the dispatch
+    uvec4 band;      // x: first row, y: rows, z: tiles (workgroups) in the band, w: tile stride
+                     // (coprime with z, z * w < 2^32): workgroup g renders tile (g * w) mod z
 };
 
 // Accumulation (SSBO, written by the kernel): per pixel, sum.rgb and the number of finite samples

@@ -12,33 +12,37 @@
 
 #include "bvh/flatten.h"
 #include "bvh/two_level.h"
+#include "render/gpu_arrays.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "vk/device.h"
 
 namespace vkp::test {
 
-/// A renderer with its scene and BVH kept alive beside it.
+/// A renderer with its scene, BVH and packed arrays kept alive beside it.
 struct TestRender {
     Scene scene;
     FlatBvh bvh;
+    GpuArrays arrays;
     std::unique_ptr<Renderer> renderer;
 };
 
-/// Builds the BVH of `scene` (two-level when the scene has instances, as the CLI does) and uploads
-/// both with renderer options `o`. Throws what the Renderer throws (VulkanError beyond the
-/// device's limits).
-inline TestRender makeRender(VulkanDevice& dev, Scene scene, const RendererOptions& o) {
+/// The pipeline of the CLI (render/render_job.h): the BVH of `scene` (two-level when the scene has
+/// instances), the packed arrays (packGpuArrays) and the renderer with options `o`. Throws what the
+/// Renderer throws (DeviceError beyond the device's limits). `limits` (optional): pretend the
+/// device has these (to force bands of rows on a small image).
+inline TestRender makeRender(VulkanDevice& dev, Scene scene, const RenderOptions& o, const DeviceLimits* limits = nullptr) {
     TestRender r;
     r.scene = std::move(scene);
     r.bvh = buildSceneBvh(r.scene);
-    r.renderer = std::make_unique<Renderer>(dev, r.scene, r.bvh, o);
+    r.arrays = packGpuArrays(r.scene, r.bvh, o);
+    r.renderer = std::make_unique<Renderer>(dev, r.arrays, o, limits);
     return r;
 }
 
-/// makeRender with `sampler` and `samplesPerDispatch` (RendererOptions), every other option default.
+/// makeRender with `sampler` and `samplesPerDispatch` (RenderOptions), every other option default.
 inline TestRender makeRender(VulkanDevice& dev, Scene scene, Sampler sampler, std::uint32_t samplesPerDispatch = 4) {
-    RendererOptions o;
+    RenderOptions o;
     o.sampler = sampler;
     o.samplesPerDispatch = samplesPerDispatch;
     return makeRender(dev, std::move(scene), o);
@@ -56,7 +60,7 @@ inline TestRender makeRender(VulkanDevice& dev, const std::filesystem::path& fil
 
 /// Renders `scene` with options `o` for spp samples and returns the sums; expects no non-finite
 /// sample and no path cut by the loop guard (`what` names the render in the messages).
-inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RendererOptions& o, std::uint32_t spp,
+inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const RenderOptions& o, std::uint32_t spp,
                             const std::string& what) {
     TestRender r = makeRender(dev, scene, o);
     r.renderer->addSamples(spp);
@@ -69,7 +73,7 @@ inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, const Rendere
 /// renderSums with `sampler` and 4 samples per dispatch.
 inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampler, std::uint32_t spp,
                             const std::string& what) {
-    RendererOptions o;
+    RenderOptions o;
     o.sampler = sampler;
     o.samplesPerDispatch = 4;
     return renderSums(dev, scene, o, spp, what);

@@ -20,7 +20,7 @@ TestRender makeAdaptive(VulkanDevice& dev, std::uint32_t size, double threshold,
     Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
     scene.camera.width = size;
     scene.camera.height = size;
-    RendererOptions o;
+    RenderOptions o;
     o.sampler = Sampler::Mis;
     o.adaptiveThreshold = threshold;
     o.adaptiveMinSpp = minSpp;

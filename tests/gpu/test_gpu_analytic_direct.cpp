@@ -185,7 +185,7 @@ TEST(GpuAnalytic, PlaneUnderThreeLightsEveryPickAndLightSampling) {
             // plane's points nearest to them and in area from the rest (apparent sizes 0.09-0.44
             // and 0.15-0.57 sr across the image): the seam must not show.
             for (LightSampling ls : {LightSampling::Auto, LightSampling::SolidAngle, LightSampling::Area}) {
-                RendererOptions o;
+                RenderOptions o;
                 o.sampler = s;
                 o.lightPick = pick;
                 o.lightSampling = ls;

@@ -102,7 +102,7 @@ SamplerRun runScene(VulkanDevice& dev, const Scene& scene, Sampler sampler, std:
     SamplerRun run;
     run.sampler = sampler;
     run.seed = scene.render.seed;
-    RendererOptions o;
+    RenderOptions o;
     o.sampler = sampler;
     o.sequence = sequence;
     o.samplesPerDispatch = 4;

@@ -157,7 +157,7 @@ TEST(GpuEmissiveTexture, PerTrianglePowerKeepsTheMeanAndCutsVariance) {
     VKP_REQUIRE_DEVICE(dev);
     const std::uint32_t spp = 256;
     auto render = [&](Sampler s, LightPick pick, std::uint32_t seed) {
-        RendererOptions o;
+        RenderOptions o;
         o.sampler = s;
         o.lightPick = pick;
         o.sequence = Sequence::Random;

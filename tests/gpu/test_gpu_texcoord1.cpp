@@ -43,8 +43,8 @@ TEST(GpuTexCoord1, RendersLikeTexCoord0WithTheUvSetsSwapped) {
     for (Sampler smp : {Sampler::Bsdf, Sampler::Mis}) {
         const std::uint32_t k = 10 * std::uint32_t(smp);
         const Scene textured = halfQuadsScene("texcoord1.gltf", kQuads, 301 + k);
-        ASSERT_TRUE(sceneFeatures(textured, smp).texCoord1);
-        ASSERT_FALSE(sceneFeatures(swapped(0), smp).texCoord1);  // the reference runs without it
+        ASSERT_TRUE(sceneFeatures(textured, RenderOptions{.sampler = smp}).texCoord1);
+        ASSERT_FALSE(sceneFeatures(swapped(0), RenderOptions{.sampler = smp}).texCoord1);  // the reference runs without it
         const PixelStats a(renderSums(dev, textured, smp, kSpp, "texcoord1.gltf"));
         const PixelStats b(renderSums(dev, swapped(302 + k), smp, kSpp, "texcoord1.gltf, UV sets swapped"));
         const std::string s = std::string(samplerName(smp)) + " ";

@@ -46,7 +46,7 @@ TEST(GpuTransmissionTexture, RendersLikeTheConstantFactorItAmountsTo) {
     for (Sampler smp : {Sampler::Bsdf, Sampler::Mis}) {
         const std::uint32_t k = 10 * std::uint32_t(smp);
         const Scene textured = halfQuadsScene("transmission-textures.gltf", kQuads, 201 + k);
-        const Features f = sceneFeatures(textured, smp);
+        const Features f = sceneFeatures(textured, RenderOptions{.sampler = smp});
         ASSERT_TRUE(f.extensionTextures && f.hasMaterial(gpu::MAT_DIELECTRIC) && f.hasMaterial(gpu::MAT_PBR));  // both renderings compiled in
         const PixelStats a(renderSums(dev, textured, smp, kSpp, "transmission-textures.gltf"));
         const PixelStats left(renderSums(dev, reference(202 + k, false), smp, kSpp, "reference, left texels"));

@@ -26,32 +26,32 @@ TEST(CliArgs, RenderWithEveryFlag) {
                              "--adaptive", "0.03", "--adaptive-min-spp", "32"});
     EXPECT_EQ(a.command, Command::Render);
     EXPECT_EQ(a.scene, "s.json");
-    ASSERT_EQ(a.outputs.size(), 2u);
+    ASSERT_EQ(a.session.outputs.size(), 2u);
     EXPECT_EQ(*a.spp, 16u);
-    EXPECT_DOUBLE_EQ(a.timeLimit, 2.5);
+    EXPECT_DOUBLE_EQ(a.session.timeLimit, 2.5);
     EXPECT_EQ(*a.width, 64u);
     EXPECT_EQ(*a.height, 32u);
     EXPECT_EQ(*a.maxDepth, 7u);
     EXPECT_EQ(*a.seed, 9u);
-    EXPECT_EQ(a.sampler, Sampler::Light);
-    EXPECT_TRUE(a.fullVariant);
+    EXPECT_EQ(a.render.sampler, Sampler::Light);
+    EXPECT_TRUE(a.render.fullVariant);
     EXPECT_EQ(a.device, "llvm");
     EXPECT_TRUE(a.validate);
-    EXPECT_DOUBLE_EQ(a.exposure, -1.0);
-    EXPECT_EQ(a.dumpEvery, 4u);
-    EXPECT_EQ(a.dumpDir, "d");
-    ASSERT_EQ(a.dumpFormats.size(), 2u);
-    EXPECT_EQ(a.dumpFormats[1], ImageFormat::Exr);
-    EXPECT_TRUE(a.quiet);
-    EXPECT_EQ(a.samplesPerDispatch, 2u);
+    EXPECT_DOUBLE_EQ(a.session.exposure, -1.0);
+    EXPECT_EQ(a.session.dumpEvery, 4u);
+    EXPECT_EQ(a.session.dumpDir, "d");
+    ASSERT_EQ(a.session.dumpFormats.size(), 2u);
+    EXPECT_EQ(a.session.dumpFormats[1], ImageFormat::Exr);
+    EXPECT_TRUE(a.session.quiet);
+    EXPECT_EQ(a.render.samplesPerDispatch, 2u);
     EXPECT_EQ(*a.rouletteDepth, 5u);
-    EXPECT_DOUBLE_EQ(a.adaptiveThreshold, 0.03);
-    EXPECT_EQ(a.adaptiveMinSpp, 32u);
+    EXPECT_DOUBLE_EQ(a.render.adaptiveThreshold, 0.03);
+    EXPECT_EQ(a.render.adaptiveMinSpp, 32u);
 }
 
 TEST(CliArgs, DefaultsAndOtherCommands) {
     const CliArgs a = parse({"render", "s.json"});
-    EXPECT_EQ(a.sampler, Sampler::Mis);
+    EXPECT_EQ(a.render.sampler, Sampler::Mis);
     EXPECT_FALSE(a.spp);
     EXPECT_EQ(parse({}).command, Command::Help);
     EXPECT_EQ(parse({"--version"}).command, Command::Version);
@@ -60,24 +60,24 @@ TEST(CliArgs, DefaultsAndOtherCommands) {
 }
 
 TEST(CliArgs, Sequence) {
-    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "random"}).sequence, Sequence::Random);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "sobol"}).sequence, Sequence::Sobol);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "random"}).render.sequence, Sequence::Random);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "sobol"}).render.sequence, Sequence::Sobol);
 }
 
 TEST(CliArgs, LightPickAndSampling) {
     const CliArgs d = parseArgs({"render", "s.json"});
-    EXPECT_EQ(d.lightPick, LightPick::Power);
-    EXPECT_EQ(d.lightSampling, LightSampling::Auto);
-    EXPECT_EQ(d.solidAngleMinSize, kSolidAngleMinSize);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "uniform"}).lightPick, LightPick::Uniform);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "power"}).lightPick, LightPick::Power);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "area"}).lightSampling, LightSampling::Area);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "solid-angle"}).lightSampling, LightSampling::SolidAngle);
+    EXPECT_EQ(d.render.lightPick, LightPick::Power);
+    EXPECT_EQ(d.render.lightSampling, LightSampling::Auto);
+    EXPECT_EQ(d.render.solidAngleMinSize, kSolidAngleMinSize);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "uniform"}).render.lightPick, LightPick::Uniform);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-pick", "power"}).render.lightPick, LightPick::Power);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "area"}).render.lightSampling, LightSampling::Area);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "solid-angle"}).render.lightSampling, LightSampling::SolidAngle);
     EXPECT_NE(errorOf({"render", "s.json", "--light-pick", "random"}).find("--light-pick must be power or uniform, got 'random'"),
               std::string::npos);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto"}).lightSampling, LightSampling::Auto);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--solid-angle-min", "0.05"}).solidAngleMinSize, 0.05f);
-    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto", "--solid-angle-min", "0"}).solidAngleMinSize, 0.0f);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto"}).render.lightSampling, LightSampling::Auto);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--solid-angle-min", "0.05"}).render.solidAngleMinSize, 0.05f);
+    EXPECT_EQ(parseArgs({"render", "s.json", "--light-sampling", "auto", "--solid-angle-min", "0"}).render.solidAngleMinSize, 0.0f);
     EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "cone"}).find("--light-sampling must be auto, solid-angle or area"),
               std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--light-sampling", "area", "--solid-angle-min", "0.1"})
@@ -89,13 +89,13 @@ TEST(CliArgs, LightPickAndSampling) {
 
 TEST(CliArgs, WorkgroupAndTileOrder) {
     const CliArgs d = parseArgs({"render", "s.json"});
-    EXPECT_EQ(d.workgroupX, 8u);
-    EXPECT_EQ(d.workgroupY, 8u);
-    EXPECT_FALSE(d.linearTiles);
+    EXPECT_EQ(d.render.workgroupX, 8u);
+    EXPECT_EQ(d.render.workgroupY, 8u);
+    EXPECT_FALSE(d.render.linearTiles);
     const CliArgs a = parseArgs({"render", "s.json", "--workgroup", "16x4", "--tile-order", "linear"});
-    EXPECT_EQ(a.workgroupX, 16u);
-    EXPECT_EQ(a.workgroupY, 4u);
-    EXPECT_TRUE(a.linearTiles);
+    EXPECT_EQ(a.render.workgroupX, 16u);
+    EXPECT_EQ(a.render.workgroupY, 4u);
+    EXPECT_TRUE(a.render.linearTiles);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "16"}).find("--workgroup wants WxH"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "0x8"}).find("--workgroup"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "64x32"}).find("at most 1024"), std::string::npos);

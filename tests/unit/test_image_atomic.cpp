@@ -2,6 +2,7 @@
 // leaves a temporary file behind.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -152,18 +153,39 @@ TEST(AtomicFile, FailingImageEncodeKeepsOldImage) {
     EXPECT_EQ(entries(dir), 1);
 }
 
+// A directory vkpath may not write to is refused before rendering. Root ignores directory
+// permissions (CI runs as root), so as root the check runs in a child that has become `nobody`
+// (uid and gid 65534), for whom the directory (root's, mode 0555) is read-only.
 TEST(AtomicFile, UnwritableDirectoryIsReportedUpFront) {
-    if (::geteuid() == 0) GTEST_SKIP() << "root ignores directory permissions";
     const fs::path dir = freshDir("readonly");
-    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
-    std::string msg;
-    try {
-        checkOutputPath(dir / "out.png");
-    } catch (const InputError& e) {
-        msg = e.what();
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read | fs::perms::group_exec |
+                             fs::perms::others_read | fs::perms::others_exec);
+    auto refused = [&]() {
+        try {
+            checkOutputPath(dir / "out.png");
+        } catch (const InputError& e) {
+            return std::string(e.what()).find("cannot create a file") != std::string::npos;
+        }
+        return false;
+    };
+    bool ok = false;
+    if (::geteuid() != 0) {
+        ok = refused();
+    } else {
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0) << "fork failed";
+        if (child == 0) {
+            if (::setgid(65534) != 0 || ::setuid(65534) != 0) ::_exit(2);
+            ::_exit(refused() ? 0 : 1);
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ASSERT_TRUE(WIFEXITED(status));
+        ASSERT_NE(WEXITSTATUS(status), 2) << "could not become nobody (setuid)";
+        ok = WEXITSTATUS(status) == 0;
     }
     fs::permissions(dir, fs::perms::owner_all);
-    EXPECT_NE(msg.find("cannot create a file"), std::string::npos) << msg;
+    EXPECT_TRUE(ok) << "checkOutputPath must refuse a directory it cannot write to";
     EXPECT_EQ(entries(dir), 0);
 }
 
