@@ -1,4 +1,4 @@
-# Every library comes from a Debian package (see README "Dependencies"); nothing is vendored.
+# Every library comes from a Debian package (docs/design.md "Dependencies"); nothing is vendored.
 find_package(Vulkan REQUIRED COMPONENTS glslangValidator)
 find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)

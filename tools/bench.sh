@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs vkpath's benchmark suite (README "Benchmarks"): time against error on six scenes, written to
+# Runs vkpath's benchmark suite (docs/performance.md "The benchmark suite"): time against error on six scenes, written to
 # a results folder (CSV per scene, summary.md, summary.json, relmse_vs_time.png).
 # Usage: tools/bench.sh [--quick] [--out DIR] [more options of tools/bench/bench.py --help]
 # Installs what is missing (tools/deps.sh --bench: also python3-numpy and python3-matplotlib) and

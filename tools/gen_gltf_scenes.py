@@ -64,7 +64,7 @@ Usage: tools/gen_gltf_scenes.py [output dir]   (default: scenes/gltf beside tool
            COUNT nodes on a square grid sharing one lumpy blob of at least TRIANGLES triangles
            (POSITION + NORMAL, uint32 indices), each turned, scaled and every third one mirrored,
            on a floor under an emissive panel, with a camera: for the instancing measurements
-           (README "Instancing"); not committed.
+           (docs/performance.md "Instancing"); not committed.
 """
 import array
 import base64

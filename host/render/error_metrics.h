@@ -1,5 +1,5 @@
 // Error of a rendered image against a reference: the numbers of `vkpath render --reference REF`
-// (README "Benchmarks"), and the CSV log of `--error-log`.
+// (docs/performance.md "Measuring one render"), and the CSV log of `--error-log`.
 #pragma once
 #include <cstdint>
 #include <cstdio>

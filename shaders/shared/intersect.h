@@ -118,7 +118,7 @@ VKP_FN int primLight(GpuPrim p) { return int(floatBitsToUint(p.p2.w)) - 1; }
 // VKP_HAS_PARALLELOGRAMS (quads and triangles) as a boolean expression, usually a specialization
 // constant, before including this header. They are tested in plain `if`s, so a false constant
 // removes that kind's code from intersectPrim when the pipeline is created (on lavapipe every
-// reachable branch body runs, see DESIGN.md). Primitives of a compiled-out kind are never hit.
+// reachable branch body runs, see docs/design.md "Every reachable branch runs"). Primitives of a compiled-out kind are never hit.
 #ifndef VKP_HAS_SPHERES
 #define VKP_HAS_SPHERES true
 #endif

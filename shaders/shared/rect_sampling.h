@@ -52,7 +52,7 @@ VKP_FN float triangleSolidAngle(vec3 a, vec3 b, vec3 c) {
 /// the squared distance to the centre (sr), the solid angle it would subtend face-on. Cheap (no
 /// trigonometry) and a function of the light and p alone, so a sample and its pdf take the same
 /// branch with it. Where it is small, area sampling's pdf d^2 / (|cos| A) barely varies over the
-/// light and solid-angle sampling's setup does not pay (`--light-sampling auto`, README "Numbers").
+/// light and solid-angle sampling's setup does not pay (`--light-sampling auto`, docs/performance.md "Solid angle or area").
 VKP_FN float apparentSize(float area, vec3 centre, vec3 p) {
     vec3 d = centre - p;
     return area / max(dot(d, d), 1.0e-30f);
@@ -149,7 +149,7 @@ VKP_FN bool rectLightUsesSolidAngle(vec3 Q, vec3 u, vec3 v, vec3 p, float minSiz
 /// Direction from p to a point of the quad Q + a u + b v: uniform in solid angle (pdf 1/S) when
 /// the quad looks at least minSize large from p (rectLargeEnough; sr, 0: always) and
 /// useSphericalRect, otherwise uniform in area (sampleQuadLight). pdf 0: no sample.
-/// (One call of the area fallback: on lavapipe every call site runs, taken or not; DESIGN.md.)
+/// (One call of the area fallback: on lavapipe every call site runs, taken or not; docs/design.md "Every reachable branch runs".)
 VKP_FN LightSample sampleRectLight(vec3 Q, vec3 u, vec3 v, vec3 p, vec2 xi, float minSize) {
     if (rectLargeEnough(Q, u, v, p, minSize)) {
         SphericalRect r = sphericalRectInit(Q, u, v, p);

@@ -119,7 +119,7 @@ VKP_FN LightSample sampleSphericalTriangleLight(vec3 v0, vec3 e1, vec3 e2, vec3 
 /// Direction from p to a point of the triangle v0 + a e1 + b e2: uniform in solid angle (pdf 1/S)
 /// when the triangle looks at least minSize large from p (triangleLargeEnough; sr, 0: always) and
 /// useSphericalTriangle, otherwise uniform in area (sampleTriangleLight). pdf 0: no sample.
-/// (One call of the area fallback: on lavapipe every call site runs, taken or not; DESIGN.md.)
+/// (One call of the area fallback: on lavapipe every call site runs, taken or not; docs/design.md "Every reachable branch runs".)
 VKP_FN LightSample sampleTriangleLightSolidAngle(vec3 v0, vec3 e1, vec3 e2, vec3 p, vec2 xi, float minSize) {
     if (triangleLargeEnough(v0, e1, e2, p, minSize)) {
         float S = triangleLightSolidAngle(v0, e1, e2, p);

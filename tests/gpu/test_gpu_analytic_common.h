@@ -88,7 +88,7 @@ inline std::vector<Pixel> rect(std::uint32_t x0, std::uint32_t y0, std::uint32_t
 }
 
 /// z-test of an estimate against an expected value (file comment); counts against zBudget().
-/// With print = true the result is also printed (for the summaries in README "Accuracy").
+/// With print = true the result is also printed (for the summaries in docs/accuracy.md).
 /// rareJump: for estimators whose samples rarely (probability << 1 / samples) jump by up to
 /// rareJump from the common value (Russian roulette ending a path that almost always has the same
 /// value), the sample variance misses those events when none happened; the variance of one such

@@ -8,7 +8,7 @@
 //    of L_texel * integral over the texel of max(0, n . w) dw (nearest lookup: radiance is constant
 //    per texel), integrated on the host from the map as loaded, 64 x 64 midpoints per texel;
 //  - sun: the same plane under a dim sky with one very bright texel (the sun); the error of each
-//    sampler at equal spp is measured and printed (README "Environment lighting").
+//    sampler at equal spp is measured and printed (docs/accuracy.md "Environment lighting: tests and numbers").
 // z-tests share the budget of this executable (test_gpu_analytic_direct.cpp: 1000 tests, family-wise
 // false-failure probability 0.01). Region means average >= 64 pixels x 256 samples of bounded
 // values; in the band scene the bright band covers ~25% of the hemisphere, so even bsdf samples

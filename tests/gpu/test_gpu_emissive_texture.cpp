@@ -151,7 +151,7 @@ TEST(GpuEmissiveTexture, LightPowerFollowsEachTrianglesFootprint) {
 // with no black one, exactly what the texture's mean for every triangle gave): the same image
 // (z-tests of 16 blocks and of the whole image, G channel, for light and mis, and of the image
 // against bsdf, which finds the emission by hitting it), at lower variance. False failures: the file's z-test budget (family-wise 1 %); the variance ratio's limit
-// is 1/4 of the ratio measured at these seeds (light 24x, mis 26x, see README), far outside the
+// is 1/4 of the ratio measured at these seeds (light 24x, mis 26x; docs/accuracy.md "glTF textures, shading normals and alpha"), far outside the
 // noise of a ratio of sums of 1024 per-pixel variances.
 TEST(GpuEmissiveTexture, PerTrianglePowerKeepsTheMeanAndCutsVariance) {
     VKP_REQUIRE_DEVICE(dev);

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""vkpath's benchmark suite: run time against error (README "Benchmarks").
+"""vkpath's benchmark suite: run time against error (docs/performance.md "The benchmark suite").
 
 For each scene (cornell-book3, cornell-classic, cornell-lights (25 lights of very different power),
 spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
