@@ -1,5 +1,6 @@
-// The test of one leaf primitive, shared by the binary (lib/traverse.glsl) and the 4-wide
-// (lib/traverse_wide.glsl) traversal (its CPU twin: host/bvh/traverse_shared_cpu.h): the includer
+// The test of one leaf primitive, shared by the 4-wide traversal (lib/traverse_wide.glsl, the
+// kernels') and the binary one of the layout benchmark (shaders/tests/traverse_binary.glsl); its
+// CPU twin: host/bvh/traverse_shared_cpu.h. The includer
 // defines fetchPrim(uint) and, optionally,
 // VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit: alpha, lib/alpha.glsl).
 #ifndef VKP_LEAF_TEST_GLSL

@@ -1,13 +1,13 @@
-// 4-wide BVH traversal (layout: shared/wide_bvh.h). The CPU twin is host/bvh/traverse_wide_cpu.cpp:
-// keep the two in step (the GPU-vs-CPU test compares hits and pass counts).
+// 4-wide BVH traversal (layout: shared/wide_bvh.h), the kernels' only one: include it through
+// lib/traverse.glsl, which documents the interface (traceClosest, traceAny, traceClosestInstance),
+// what the includer defines and the loop guard. The CPU twin is host/bvh/traverse_wide_cpu.cpp:
+// keep the two in step (the GPU-vs-CPU tests compare hits and pass counts).
 //
 // The includer defines, BEFORE including this file (it declares no bindings):
 //   GpuWideNode fetchWideNode(uint i);   // node i (8 texels)
 //   GpuPrim fetchPrim(uint i);           // primitive i (3 texels)
 // and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false, VKP_MAX_PASSES and
-// VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit), as for
-// lib/traverse.glsl, whose interface (traceClosest, traceAny) and loop guard this file repeats:
-// include one of the two.
+// VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit).
 //
 // Algorithm: each step tests the node's four child boxes (intersectBox, component by component),
 // tests the primitives of every hit leaf child in one inner loop, then sorts the hit inner
@@ -100,15 +100,18 @@ bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, 
 #undef VKP_SORT_PAIR
 #undef VKP_WIDE_PUSH
 
-/// Closest hit, as lib/traverse.glsl's traceClosest, through the 4-wide BVH; inst receives the
-/// instance whose triangle was hit (GPU_NO_INSTANCE: a top-level primitive; primIndex and ab are then
-/// the object-space triangle and its surface parameters).
+/// Closest hit, as traceClosest; inst receives the instance whose triangle was hit (two-level BVH,
+/// shared/instance.h; GPU_NO_INSTANCE: a top-level primitive, else primIndex and ab are the
+/// object-space triangle and its surface parameters).
 bool traceClosestInstance(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
                           out vec2 ab, out uint inst, inout uint passes) {
     return vkpTraverseWide(false, o, d, tmin, tmax, primIndex, t, ab, inst, passes);
 }
 
-/// Closest hit, as lib/traverse.glsl's traceClosest, through the 4-wide BVH.
+/// Closest hit with t in (tmin, tmax) of the ray o + t d (d unit length, world units). Returns
+/// true on a hit, with primIndex (into the primitive array), t and ab (intersectPrim's surface
+/// parameters); on a miss primIndex = GPU_NODE_EMPTY, t = VKP_FAR. A ray with a NaN component or
+/// !(tmin < tmax) misses without a pass. For `passes`, see the loop guard in lib/traverse.glsl.
 bool traceClosest(vec3 o, vec3 d, float tmin, float tmax, out uint primIndex, out float t,
                   out vec2 ab, inout uint passes) {
     uint inst;

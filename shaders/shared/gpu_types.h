@@ -26,6 +26,9 @@ struct GpuPrim {
 const uint GPU_PRIM_TEXELS = 3u;
 
 // ---- BVH nodes (4 texels, 64 bytes): a binary node stores the boxes of both children ---------
+// FlatBvh::nodes: the build intermediate the 4-wide nodes the kernels traverse are collapsed from
+// (shared/wide_bvh.h); only the layout benchmark's test kernel traverses these
+// (shaders/tests/traverse_binary.glsl).
 // a.xyz/b.xyz: left child min/max, c.xyz/d.xyz: right child min/max.
 // a.w: left child (bits): node index if b.w == 0, else first primitive of the leaf;
 // b.w: left leaf primitive count (bits, 0 = inner node); c.w, d.w: the same for the right child.

@@ -20,8 +20,9 @@ VKP_BEGIN
 
 // ---- One instance (7 texels, 112 bytes) -------------------------------------------------------
 // info.x: root node of its mesh's bottom-level BVH in the 4-wide node array (shared/wide_bvh.h),
-// info.y: the same in the binary node array, info.z: flags (INSTANCE_MIRROR), info.w: the mesh's
-// index (Scene::meshes; for messages and statistics).
+// info.y: the same in the binary node array (FlatBvh::nodes: traversed only by the layout
+// benchmark's binary kernel, shaders/tests/traverse_binary.glsl), info.z: flags (INSTANCE_MIRROR),
+// info.w: the mesh's index (Scene::meshes; for messages and statistics).
 // w2o0..2: rows of the world-to-object affine map, object = (dot(row.xyz, world) + row.w) per row;
 // o2w0..2: rows of the object-to-world map (the node's world matrix), the same convention.
 // Both are the double-precision matrix and its inverse, each rounded to float once.

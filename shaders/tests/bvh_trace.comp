@@ -1,15 +1,19 @@
-// Test kernel: traces a list of rays through the BVH with lib/traverse.glsl, so a GPU test can
-// compare the device's traversal with the CPU twin (host/bvh/traverse_cpu.h).
+// Test and bench kernel: traces a list of rays through the BVH, so a GPU test can compare a device
+// traversal with its CPU twin, and the layout micro-benchmark (tests/bench/bench_bvh_layout.cpp)
+// can time the layouts. With -DVKP_BVH_WIDE it runs the kernels' traversal (lib/traverse.glsl, the
+// 4-wide layout; CPU twin host/bvh/traverse_wide_cpu.h); without, the binary layout that only the
+// benchmark and the layout-comparing tests keep (tests/traverse_binary.glsl; CPU twin
+// tests/bench/traverse_binary_cpu.h).
 //   binding 0 (SSBO, read):  per ray two vec4: (origin.xyz, tmin), (direction.xyz, tmax);
 //                            the ray count is the bound range / 32 bytes; invocation
 //                            x + y * (groups in x * 64) traces ray number that (extra ones idle)
-//   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (FlatBvh::nodes, 4 texels each)
+//   binding 1 (usamplerBuffer RGBA32UI): BVH nodes (binary: FlatBvh::nodes, 4 texels each)
 //   binding 2 (usamplerBuffer RGBA32UI): primitives (FlatBvh::prims, 3 texels each)
 //   With -DVKP_FETCH_SSBO (a bench variant, tests/bench/bench_bvh_layout.cpp) bindings 1 and 2
 //   are read-only storage buffers of uvec4 holding the same data. With -DVKP_FETCH_BDA the same
 //   data is read through buffer device addresses (GL_EXT_buffer_reference) given as push
 //   constants: uvec2 node address, uvec2 primitive address. With -DVKP_BVH_WIDE binding 1
-//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse_wide.glsl.
+//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse.glsl.
 //   binding 3 (SSBO, written): per ray a uvec4:
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
@@ -101,7 +105,11 @@ GpuInstance fetchInstance(uint i) {
 }
 #endif
 
-#include "lib/traverse.glsl"  // lib/traverse_wide.glsl with VKP_BVH_WIDE
+#ifdef VKP_BVH_WIDE
+#include "lib/traverse.glsl"  // the kernels' traversal (4-wide)
+#else
+#include "tests/traverse_binary.glsl"  // the benchmark's binary layout
+#endif
 
 void main() {
     // Works with any dispatch shape that has at least `count` invocations (rows of workgroups).

@@ -1,9 +1,10 @@
-// One level of the binary traversal loop, included twice by lib/traverse.glsl (GLSL has no
-// recursion, so the top level and an instance's bottom level are two functions with the same body).
-// No include guard. The includer defines VKP_BIN_LOOP_FN (the function's name) and VKP_BIN_LEAF(p):
-// a bool expression that tests leaf primitive p (it may use this function's parameters) and
-// updates t, primIndex, abHit, inst on a hit. Algorithm and pass counting: lib/traverse.glsl; CPU
-// twin: host/bvh/traverse_cpu.cpp (loop()).
+// One level of the binary traversal loop (the layout benchmark's, not the kernels'), included twice
+// by tests/traverse_binary.glsl (GLSL has no recursion, so the top level and an instance's bottom
+// level are two functions with the same body). No include guard. The includer defines
+// VKP_BIN_LOOP_FN (the function's name) and VKP_BIN_LEAF(p): a bool expression that tests leaf
+// primitive p (it may use this function's parameters) and updates t, primIndex, abHit, inst on a
+// hit. Algorithm: tests/traverse_binary.glsl; pass counting: lib/traverse.glsl; CPU twin:
+// tests/bench/traverse_binary_cpu.cpp (loop()).
 
 bool VKP_BIN_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
                      inout vec2 abHit, inout uint inst, uint instId, inout uint passes) {
