@@ -1,4 +1,4 @@
-// What the two CPU twins (bvh/traverse_cpu.cpp, bvh/traverse_wide_cpu.cpp) share: checked array
+// What the two CPU twins (bvh/traverse_wide_cpu.cpp, tests/support/binary_bvh/traverse_binary_cpu.cpp) share: checked array
 // access, the entry that sets up and finishes a traversal, and the leaf-primitive step (shared as
 // shaders/lib/leaf_test.glsl is shared by the two GLSL traversals: keep the three in step).
 #pragma once
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "bvh/traverse_cpu.h"
+#include "bvh/trace_result.h"
 #include "shared/instance.h"
 #include "shared/intersect.h"
 

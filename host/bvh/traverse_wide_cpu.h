@@ -2,14 +2,14 @@
 // shaders/lib/traverse_wide.glsl, step for step (four box tests per node, the primitives of every
 // hit leaf child tested in the node's step, hit inner children visited nearest first through a
 // 4-element sorting network, the others pushed far to near), same pass counting as the binary
-// traversal (traverse_cpu.h: +2 per node step, +1 per primitive). Used as the reference in tests.
+// traversal (tests/support/binary_bvh: +2 per node step, +1 per primitive). Used as the reference in tests.
 // Instances (two-level BVH, host/bvh/two_level.h): a PRIM_INSTANCE leaf primitive maps the ray into
 // its object space (shared/instance.h) and traverses its mesh's bottom level from its root, with a
 // stack of its own; that costs +1 pass (the bottom-level loop's exit) on top of its steps.
 #pragma once
 #include <span>
 
-#include "bvh/traverse_cpu.h"
+#include "bvh/trace_result.h"
 #include "shared/instance.h"
 #include "shared/wide_bvh.h"
 

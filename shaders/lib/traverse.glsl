@@ -20,7 +20,7 @@
 // cut-outs and stochastic transparency, lib/alpha.glsl), and VKP_HAS_INSTANCES with
 // GpuInstance fetchInstance(uint i) (two-level BVH, lib/traverse_wide.glsl).
 //
-// Loop guard: lavapipe silently ends loops after 65,535 passes per invocation (DESIGN.md).
+// Loop guard: lavapipe silently ends loops after 65,535 passes per invocation (docs/design.md, "The loop limiter").
 // `passes` counts like lavapipe: +2 per step (the step and the exit of its leaf loop), +1 per
 // primitive tested, +1 per instance entered (its bottom-level loop's exit). The loop stops when
 // passes >= VKP_MAX_PASSES. If the traversal did not finish (budget used up, the driver ended the

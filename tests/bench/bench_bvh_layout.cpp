@@ -26,7 +26,7 @@
 #include <sys/resource.h>
 
 #include "bvh/flatten.h"
-#include "bvh/traverse_cpu.h"
+#include "traverse_binary_cpu.h"
 #include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"
 #include "bvh_trace.spv.h"

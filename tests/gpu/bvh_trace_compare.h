@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bvh/flatten.h"
-#include "bvh/traverse_cpu.h"
+#include "bvh/trace_result.h"
 #include "shared/instance.h"
 #include "bvh_test_scenes.h"
 #include "vk/buffer.h"

@@ -1,5 +1,5 @@
 // The GPU traversal (shaders/lib/traverse.glsl, run through shaders/tests/bvh_trace.comp) against
-// its CPU twin (host/bvh/traverse_cpu) on the same flattened BVH and the same rays: the same
+// its CPU twin (tests/support/binary_bvh/traverse_binary_cpu) on the same flattened BVH and the same rays: the same
 // closest hit (t bit-exact, primitive), the same any-hit answer and the same loop-pass counts.
 // The 100k-triangle mesh would expose a traversal cut short by lavapipe's loop limiter.
 #include <gtest/gtest.h>
@@ -7,11 +7,12 @@
 #include "bvh_trace.spv.h"
 #include "bvh_trace_compare.h"
 #include "gpu_env.h"
+#include "traverse_binary_cpu.h"
 
 namespace vkp::test {
 namespace {
 
-/// The binary layout: FlatBvh nodes, traverse_cpu.h.
+/// The binary layout: FlatBvh nodes, traverse_binary_cpu.h.
 BvhCompare comparer(VulkanDevice& dev) {
     return [&dev](const std::vector<Shape>& shapes, const std::vector<Ray>& rays) {
         const FlatBvh bvh = buildFlatBvh(makeScene(shapes));

@@ -1,6 +1,6 @@
 // Instances through the device's traversals (shaders/lib/traverse_wide.glsl and the binary
 // lib/traverse.glsl with VKP_HAS_INSTANCES, run by shaders/tests/bvh_trace.comp compiled with
-// -DVKP_INSTANCES) against their CPU twins (host/bvh/traverse_wide_cpu, traverse_cpu) on the same
+// -DVKP_INSTANCES) against their CPU twins (host/bvh/traverse_wide_cpu, tests/support/binary_bvh/traverse_binary_cpu) on the same
 // two-level BVH and rays: the same closest hit (t bit-exact, primitive, instance), any-hit answer
 // and pass counts. The scene's instances
 // translate, rotate, scale non-uniformly and mirror two shared meshes (tests/support/instance_test_scenes.h).
@@ -12,12 +12,13 @@
 #include "bvh_trace_instances.spv.h"
 #include "bvh_trace_wide_instances.spv.h"
 #include "gpu_env.h"
+#include "traverse_binary_cpu.h"
 #include "instance_test_scenes.h"
 
 namespace vkp::test {
 namespace {
 
-/// The binary layout: FlatBvh::nodes, traverse_cpu.h.
+/// The binary layout: FlatBvh::nodes, traverse_binary_cpu.h.
 BvhComparison compareInstancedBinary(VulkanDevice& dev, const Scene& scene, const std::vector<Ray>& rays) {
     const FlatBvh bvh = buildTwoLevelBvh(scene);
     return compareTraversal(

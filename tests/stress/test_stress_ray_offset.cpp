@@ -25,7 +25,7 @@
 #include <string>
 
 #include "bvh/flatten.h"
-#include "bvh/traverse_cpu.h"
+#include "traverse_binary_cpu.h"
 #include "bvh_test_scenes.h"
 #include "render/gpu_scene.h"
 #include "shared/intersect.h"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "bvh/flatten.h"
-#include "bvh/traverse_cpu.h"
+#include "traverse_binary_cpu.h"
 #include "bvh/traverse_wide_cpu.h"
 #include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"

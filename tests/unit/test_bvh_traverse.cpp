@@ -1,4 +1,4 @@
-// CPU traversal of the flattened BVH (host/bvh/traverse_cpu.h) against brute force over every
+// CPU traversal of the flattened BVH (tests/support/binary_bvh/traverse_binary_cpu.h) against brute force over every
 // primitive: closest t and primitive, any-hit agreement, on random triangles, spheres, quads, a
 // mix, a dense mesh, axis-parallel rays on box planes, tiny scenes; the pass guard and the
 // documented stack-overflow behaviour.
@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "bvh/flatten.h"
-#include "bvh/traverse_cpu.h"
+#include "traverse_binary_cpu.h"
 #include "bvh_test_scenes.h"
 
 namespace {

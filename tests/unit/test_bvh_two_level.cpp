@@ -12,6 +12,7 @@
 
 #include "bvh/tlas.h"
 #include "bvh/traverse_wide_cpu.h"
+#include "traverse_binary_cpu.h"
 #include "bvh/two_level.h"
 #include "instance_test_scenes.h"
 #include "shared/instance.h"

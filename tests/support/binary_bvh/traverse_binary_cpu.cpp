@@ -1,5 +1,5 @@
 // CPU twin of shaders/lib/traverse.glsl (vkpTraverse, vkpBinaryLoop*): keep the two in step.
-#include "bvh/traverse_cpu.h"
+#include "traverse_binary_cpu.h"
 
 #include <algorithm>
 

@@ -1,7 +1,9 @@
-// CPU traversal of a flattened BVH (the GPU layout): the host twin of shaders/lib/traverse.glsl,
-// same algorithm step for step (short stack, nearer inner child first, both leaf children's
-// primitives tested in the node's step), same intersection code (shared/intersect.h), same pass
-// counting. Used as the reference in tests and for host-side ray queries.
+// CPU traversal of the binary BVH layout (FlatBvh::nodes): the twin of the layout benchmark's
+// binary traversal, shaders/tests/traverse_binary.glsl, step for step (short stack, nearer inner
+// child first, both leaf children's primitives tested in the node's step), same intersection code
+// (shared/intersect.h), same pass counting. Test code: the product traverses the 4-wide layout only
+// (its CPU twin is host/bvh/traverse_wide_cpu.h); this one is kept for the layout benchmark, the
+// tests that compare the two layouts and the tests of the binary flattening.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -9,31 +11,15 @@
 #include <glm/glm.hpp>
 
 #include "bvh/flatten.h"
+#include "bvh/trace_result.h"
 #include "shared/gpu_types.h"
 #include "shared/instance.h"
 
 namespace vkp {
 
-/// Default pass budget of one trace call (VKP_MAX_PASSES in traverse.glsl).
-constexpr std::uint32_t kTraceMaxPasses = 60000;
-/// Entries of the traversal stack (VKP_TRAVERSE_STACK in traverse.glsl). A tree of leaf depth
-/// <= 32 (the builder's bound) needs at most 31.
+/// Entries of the traversal stack (VKP_TRAVERSE_STACK in shaders/tests/traverse_binary.glsl). A
+/// tree of leaf depth <= 32 (the builder's bound) needs at most 31.
 constexpr std::uint32_t kTraceStackSize = 32;
-
-/// Result of a trace. Passes count like the GLSL: +2 per node step (the step and the leaf loop's
-/// exit), +1 per primitive tested. When the budget is used up or the stack would overflow, the
-/// traversal stops and passes is raised to >= maxPasses: the caller treats the path as cut short
-/// (cutShort()); hit/t/prim then describe what was found so far.
-struct TraceResult {
-    bool hit = false;
-    float t = gpu::VKP_FAR;                 ///< hit distance (world units), VKP_FAR on a miss
-    std::uint32_t prim = gpu::GPU_NODE_EMPTY;  ///< index into FlatBvh::prims
-    glm::vec2 ab{0.0f};                     ///< surface parameters (see intersectPrim; object space for an instance's triangle)
-    std::uint32_t instance = gpu::GPU_NO_INSTANCE;  ///< FlatBvh::instances index of the hit's instance
-    std::uint32_t passes = 0;               ///< passes counted so far (the caller's start value +)
-    std::uint32_t maxPasses = kTraceMaxPasses;
-    bool cutShort() const { return passes >= maxPasses; }
-};
 
 /// Closest hit with t in (tmin, tmax) of the ray o + t d (d unit length, world units) against the
 /// nodes and prims of a FlatBvh; instances: FlatBvh::instances, which PRIM_INSTANCE primitives name
