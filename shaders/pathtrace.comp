@@ -108,7 +108,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     if (nee) s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, sampleNext2(s.smp), rays, passes);
     vec3 dir;
     if (mixtureOn(b)) {
-        if (!sampleMixture(b, h.x, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
+        if (!sampleMixture(b, xo, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
     } else {
         float pdf;
         vec3 weight;

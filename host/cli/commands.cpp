@@ -179,6 +179,8 @@ int runInfo(const CliArgs& a) {
     std::printf("scene        %s\n", a.scene.string().c_str());
     std::printf("image        %ux%u, %u spp, max depth %u, seed %u\n", scene.camera.width, scene.camera.height,
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);
+    std::printf("frame        camera-relative: origin at the camera, the file's point (%.17g, %.17g, %.17g)\n",
+                scene.origin.x, scene.origin.y, scene.origin.z);
     std::printf("primitives   %zu (%zu spheres, %zu quads, %zu triangles)\n", scene.shapes.size(),
                 countShapes(scene, ShapeType::Sphere), countShapes(scene, ShapeType::Quad),
                 countShapes(scene, ShapeType::Triangle));

@@ -72,6 +72,7 @@ RunStats runStats(const RenderJob& job, const std::string& variant, const Sessio
     RunStats st;
     st.version = VKPATH_VERSION;
     st.scene = job.sceneFile.string();
+    st.frameOrigin = job.scene.origin;
     st.sampler = samplerName(o.sampler);
     st.sequence = sequenceName(o.sequence);
     st.lightPick = lightPickName(o.lightPick);
@@ -113,6 +114,11 @@ std::string runStatsJson(const RunStats& s) {
     ObjectWriter w(out, 0);
     w.str("vkpath_version", s.version);
     w.str("scene", s.scene);
+    {
+        char buf[96];  // %.17g: the double round-trips
+        std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", s.frameOrigin.x, s.frameOrigin.y, s.frameOrigin.z);
+        w.raw("frame_origin", buf);
+    }
     w.raw("width", num(std::uint64_t(s.width)));
     w.raw("height", num(std::uint64_t(s.height)));
     w.raw("pixels", num(s.pixels()));

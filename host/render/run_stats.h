@@ -1,6 +1,7 @@
 // The numbers of one render, written by `vkpath render --stats-json FILE` for scripts (the
 // benchmark suite, tools/bench). The keys are documented in docs/performance.md "Measuring one render".
 #pragma once
+#include <glm/glm.hpp>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -13,6 +14,9 @@ namespace vkp {
 struct RunStats {
     std::string version;   ///< VKPATH_VERSION
     std::string scene;     ///< the scene file as given on the command line
+    /// Camera-relative space: the point of the file's coordinates the renderer's origin is at
+    /// (Scene::origin, the camera's position; world units).
+    glm::dvec3 frameOrigin{0.0};
     std::string sampler;   ///< bsdf | light | mixture
     std::string sequence;  ///< random | sobol (--sequence)
     std::string lightPick = "power";             ///< power | uniform (--light-pick)

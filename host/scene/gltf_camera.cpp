@@ -76,7 +76,8 @@ Camera cameraFromGltf(const Document& doc, std::size_t c, const glm::dmat4& worl
     return cam;
 }
 
-Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options) {
+Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options,
+                     glm::dvec3& position) {
     Camera cam;
     imageSize(1.0, options, cam);
     glm::dvec3 centre(0.0);
@@ -90,12 +91,13 @@ Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, cons
     const double hHalf = std::atan(std::tan(vHalf) * double(cam.width) / double(cam.height));
     // The bounding sphere of the box fits inside the narrower of the two half angles, with 5% to spare.
     const double dist = 1.05 * radius / std::sin(std::min(vHalf, hHalf));
-    cam.lookat = glm::vec3(centre);
-    cam.lookfrom = glm::vec3(centre + glm::dvec3(0.0, 0.0, dist));  // glTF assets face +Z
+    position = centre + glm::dvec3(0.0, 0.0, dist);  // glTF assets face +Z
+    cam.lookfrom = glm::vec3(0.0f);
+    cam.lookat = glm::vec3(centre - position);
     cam.vup = glm::vec3(0.0f, 1.0f, 0.0f);
     cam.vfov = float(kVfovDeg);
     cam.focusDist = float(dist);
-    if (!std::isfinite(cam.lookfrom.x) || !std::isfinite(cam.lookfrom.y) || !std::isfinite(cam.lookfrom.z) ||
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z) ||
         !std::isfinite(cam.focusDist)) {
         fail(file, "cameras", "the file has no camera and its scene is too large to frame in 32-bit floats");
     }

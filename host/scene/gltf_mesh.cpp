@@ -178,7 +178,8 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
             }
             pos[i] = glm::vec3(world * glm::dvec4(local[3 * i], local[3 * i + 1], local[3 * i + 2], 1.0));
             if (!hidden && !finite(&pos[i].x, 3)) {
-                positions.fail("element " + std::to_string(i) + " is outside the range of 32-bit floats once placed by its node");
+                positions.fail("element " + std::to_string(i) +
+                               " is outside the range of 32-bit floats once placed by its node, relative to the camera");
             }
         }
     }

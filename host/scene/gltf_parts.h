@@ -135,8 +135,10 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
 /// and the camera's aspectRatio. Refuses orthographic cameras and invalid perspective values.
 Camera cameraFromGltf(const Document& doc, std::size_t c, const glm::dmat4& world, const GltfOptions& options);
 /// A camera looking along -z at the centre of [lo, hi] (vfov 40 degrees) that sees all of it
-/// (file: for the message when that does not fit in floats).
-Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options);
+/// (file: for the message when that does not fit in floats). The camera is expressed relative to
+/// its own position (lookfrom = 0), which is returned as position, in the frame of lo and hi.
+Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options,
+                     glm::dvec3& position);
 /// Width and height: both options; one of them and the aspect ratio (width / height, > 0); or
 /// kGltfDefaultImageSide on the long side.
 void imageSize(double aspect, const GltfOptions& options, Camera& camera);

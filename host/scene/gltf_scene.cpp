@@ -254,7 +254,7 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         growTransformedBox(mi.world, blo, bhi, wlo, whi);
         const double big = double(std::numeric_limits<float>::max()) * 0.5;
         if (!(glm::all(glm::lessThan(glm::abs(wlo), glm::dvec3(big))) && glm::all(glm::lessThan(glm::abs(whi), glm::dvec3(big)))))
-            fail(doc.file, nodePlace(doc, mi.node), "places " + im.name + " outside the range of 32-bit floats");
+            fail(doc.file, nodePlace(doc, mi.node), "places " + im.name + " outside the range of 32-bit floats relative to the camera");
         lo = glm::min(lo, wlo);
         hi = glm::max(hi, whi);
         scene.instances.push_back({std::uint32_t(meshSlot[mi.mesh]), mi.world});
@@ -285,9 +285,7 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
     Scene scene;
     scene.path = file;
     scene.warnings = std::move(doc.warnings);
-    const gltf::Instances inst = gltf::traverse(doc, options.scene, glm::dmat4(1.0), scene);
-    gltf::PlacementState state{gltf::MaterialMapper(doc, scene, std::nullopt)};
-    const auto [lo, hi] = gltf::appendInstances(doc, inst, state, options.instancing, 1, scene);
+    gltf::Instances inst = gltf::traverse(doc, options.scene, glm::dmat4(1.0), scene);
 
     const gltf::CameraInstance* chosen = nullptr;
     if (options.camera) {
@@ -312,8 +310,28 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
             }
         }
     }
-    scene.camera = chosen ? gltf::cameraFromGltf(doc, chosen->camera, chosen->world, options)
-                          : gltf::framingCamera(doc.file, lo, hi, options);
+    // Camera-relative space (docs/design.md): every node matrix, in double, is moved so that the
+    // camera's node sits at the origin before a vertex becomes float. Without a camera, the frame
+    // starts at the first mesh node's position (near the geometry, so the floats keep their
+    // digits) and moves to the framing camera once the bounds are known.
+    if (chosen) {
+        scene.origin = glm::dvec3(chosen->world[3]);
+    } else if (!inst.meshes.empty()) {
+        scene.origin = glm::dvec3(inst.meshes.front().world[3]);
+    }
+    for (gltf::MeshInstance& mi : inst.meshes) mi.world[3] -= glm::dvec4(scene.origin, 0.0);
+    glm::dmat4 cameraWorld = chosen ? chosen->world : glm::dmat4(1.0);
+    cameraWorld[3] -= glm::dvec4(scene.origin, 0.0);
+
+    gltf::PlacementState state{gltf::MaterialMapper(doc, scene, std::nullopt)};
+    const auto [lo, hi] = gltf::appendInstances(doc, inst, state, options.instancing, 1, scene);
+    if (chosen) {
+        scene.camera = gltf::cameraFromGltf(doc, chosen->camera, cameraWorld, options);
+    } else {
+        glm::dvec3 position;
+        scene.camera = gltf::framingCamera(doc.file, lo, hi, options, position);
+        moveOrigin(scene, position, "the framing camera");
+    }
     return scene;
 }
 

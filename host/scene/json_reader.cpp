@@ -232,6 +232,21 @@ float Value::number(const Range& r) const {
     return f;
 }
 
+double Value::real(const Range& r) const {
+    if (!json_->is_number()) failType("a number");
+    const double x = json_->get<double>();
+    if (!std::isfinite(x)) fail("must be finite (got " + describeValue(*json_) + ")");
+    if (!r.contains(x)) fail(r.requirement() + " (got " + describeValue(*json_) + ")");
+    return x;
+}
+
+glm::dvec3 Value::dvec3(const Range& r) const {
+    if (!json_->is_array() || json_->size() != 3) failType("an array of 3 numbers");
+    glm::dvec3 out;
+    for (std::size_t i = 0; i < 3; ++i) out[static_cast<int>(i)] = element(i).real(r);
+    return out;
+}
+
 std::uint64_t Value::integer(std::uint64_t lo, std::uint64_t hi) const {
     const std::string range = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (!json_->is_number()) failType(range);

@@ -81,6 +81,12 @@ public:
     bool boolean() const;                   ///< must be true or false
     /// A number that is finite as a 32-bit float and inside r.
     float number(const Range& r = Range::any()) const;
+    /// A number inside r, in double precision (positions and transforms: the scene is composed
+    /// in double and made camera-relative before anything becomes float; docs/design.md
+    /// "Camera-relative space"). Every JSON number is a finite double (parseDocument checks).
+    double real(const Range& r = Range::any()) const;
+    /// An array of exactly 3 numbers, each checked like real(r) at its own pointer.
+    glm::dvec3 dvec3(const Range& r = Range::any()) const;
     /// An integer (written with or without a fraction of zero) in [lo, hi].
     std::uint64_t integer(std::uint64_t lo, std::uint64_t hi) const;
     /// An array of exactly 3 numbers, each checked like number(r) at its own pointer.
@@ -118,6 +124,7 @@ public:
     std::uint32_t uint32(std::string_view key, std::uint32_t lo, std::uint32_t hi, std::uint32_t def);
     glm::vec3 vec3(std::string_view key, const Range& r = Range::any()) { return required(key).vec3(r); }
     glm::vec3 vec3(std::string_view key, const Range& r, glm::vec3 def);
+    glm::dvec3 dvec3(std::string_view key, const Range& r = Range::any()) { return required(key).dvec3(r); }
     bool boolean(std::string_view key, bool def);
     std::string string(std::string_view key) { return required(key).string(); }
     std::string choice(std::string_view key, std::initializer_list<std::string_view> choices) {

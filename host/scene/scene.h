@@ -190,6 +190,12 @@ struct MeshInstance {
 
 struct Scene {
     std::filesystem::path path;  ///< file it was loaded from (for messages)
+    /// Camera-relative space (pbrt-v4's "camera-world" frame): every position of this Scene
+    /// (shapes, camera, instance matrices) is relative to this point of the file's coordinates,
+    /// the camera's position, computed in double before anything became float; a point's
+    /// file coordinates are origin + its position here. A translation only: directions (the
+    /// environment map's among them) are those of the file. docs/design.md "Camera-relative space".
+    glm::dvec3 origin{0.0};
     Camera camera;
     RenderSettings render;
     Environment environment;
@@ -253,6 +259,12 @@ void forEachShape(const Scene& scene, F&& f) {
     for (const InstancedMesh& m : scene.meshes)
         for (const Shape& s : m.shapes) f(s);
 }
+
+/// Re-express the scene's shapes and instance matrices relative to the point origin + by (in
+/// double, rounded to float once): Scene::origin grows by by. The camera is not moved (the caller
+/// sets it in the new frame). Throws InputError "<file>: <why>: shape i is outside the range of
+/// 32-bit floats relative to the camera" if a moved position overflows.
+void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why);
 
 /// Surface area in world units^2: 4 pi r^2 (sphere), |u x v| (quad), |e1 x e2| / 2 (triangle).
 float shapeArea(const Shape& s);

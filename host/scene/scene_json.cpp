@@ -14,27 +14,33 @@ namespace scenejson {
 
 using json::Range;
 
+namespace {
+bool finiteFloat(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+}  // namespace
+
 bool parallelOrZero(glm::vec3 a, glm::vec3 b) {
     const glm::dvec3 da(a), db(b);
     const double c = glm::length(glm::cross(da, db));
     return !(c > 1e-6 * glm::length(da) * glm::length(db));  // also true for NaN
 }
 
-Camera readCamera(const json::Value& v) {
+Camera readCamera(const json::Value& v, glm::dvec3& origin) {
     json::Object o = v.object();
     Camera c;
-    c.lookfrom = o.vec3("lookfrom");
-    c.lookat = o.vec3("lookat");
+    origin = o.dvec3("lookfrom");
+    const glm::dvec3 lookat = o.dvec3("lookat");
+    c.lookfrom = glm::vec3(0.0f);
     c.vup = o.vec3("vup");
     c.vfov = o.number("vfov", Range::open(0.0, 180.0));
     c.width = o.uint32("width", 1, kMaxImageSide);
     c.height = o.uint32("height", 1, kMaxImageSide);
     c.defocusAngle = o.number("defocus_angle", Range::closedOpen(0.0, 180.0), 0.0f);
 
-    const glm::dvec3 view = glm::dvec3(c.lookat) - glm::dvec3(c.lookfrom);
+    const glm::dvec3 view = lookat - origin;
     const double dist = glm::length(view);
     if (dist == 0.0) o.required("lookat").fail("must differ from lookfrom (the view direction is lookat - lookfrom)");
-    if (!std::isfinite(static_cast<float>(dist))) {
+    c.lookat = glm::vec3(view);
+    if (!std::isfinite(static_cast<float>(dist)) || !finiteFloat(c.lookat)) {
         o.required("lookat").fail("is too far from lookfrom (distance overflows a float)");
     }
     if (c.vup == glm::vec3(0.0f)) o.required("vup").fail("must not be zero");
@@ -121,7 +127,8 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     Scene scene;
     scene.path = file;
     if (description) description->string();
-    scene.camera = scenejson::readCamera(camera);
+    // The camera first: its position is the origin of the frame every coordinate is expressed in.
+    scene.camera = scenejson::readCamera(camera, scene.origin);
     if (render) scene.render = scenejson::readRender(*render);
     std::map<std::string, std::uint32_t> index;
     scenejson::readMaterials(materials, scene, index);

@@ -15,20 +15,21 @@ namespace vkp::scenejson {
 
 namespace {
 
-Shape makeQuad(glm::vec3 q, glm::vec3 u, glm::vec3 v) {
-    Shape s;
-    s.type = ShapeType::Quad;
-    s.p0 = q;
-    s.p1 = u;
-    s.p2 = v;
-    return s;
-}
+/// A shape as the file gives it, in double precision (Shape's fields, before the transform and the
+/// move to the camera-relative frame).
+struct LocalShape {
+    ShapeType type = ShapeType::Sphere;
+    glm::dvec3 p0{0.0}, p1{0.0}, p2{0.0};
+    double radius = 0.0;
+};
+
+LocalShape makeQuad(glm::dvec3 q, glm::dvec3 u, glm::dvec3 v) { return {ShapeType::Quad, q, u, v, 0.0}; }
 
 /// The six faces of an axis-aligned box, as box() of "The Next Week" (chapter "Instances") builds them, in its
 /// order (front z=max, right x=max, back z=min, left x=min, top y=max, bottom y=min). Each face's
 /// u x v points out of the box.
-std::vector<Shape> boxFaces(glm::vec3 a, glm::vec3 b) {
-    const glm::vec3 dx(b.x - a.x, 0.0f, 0.0f), dy(0.0f, b.y - a.y, 0.0f), dz(0.0f, 0.0f, b.z - a.z);
+std::vector<LocalShape> boxFaces(glm::dvec3 a, glm::dvec3 b) {
+    const glm::dvec3 dx(b.x - a.x, 0.0, 0.0), dy(0.0, b.y - a.y, 0.0), dz(0.0, 0.0, b.z - a.z);
     return {
         makeQuad({a.x, a.y, b.z}, dx, dy),   // front
         makeQuad({b.x, a.y, b.z}, -dz, dy),  // right
@@ -41,26 +42,36 @@ std::vector<Shape> boxFaces(glm::vec3 a, glm::vec3 b) {
 
 bool finite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-/// Apply the object's transform to one shape (spheres: centre moves, radius scales).
-Shape transformed(const Shape& s, const ObjectTransform& xf) {
-    Shape out = s;
+/// Apply the object's transform to one shape (spheres: centre moves, radius scales) in double,
+/// then express its points relative to origin (the camera) and round to float: the only place
+/// where a JSON object's coordinates become float (docs/design.md "Camera-relative space").
+Shape transformed(const LocalShape& s, const ObjectTransform& xf, glm::dvec3 origin) {
+    Shape out;
+    out.type = s.type;
+    auto point = [&](glm::dvec3 p) { return glm::vec3(xf.map.point(p) - origin); };
     switch (s.type) {
     case ShapeType::Sphere:
-        out.p0 = xf.map.point(s.p0);
+        out.p0 = point(s.p0);
         out.radius = static_cast<float>(s.radius * xf.uniformScale);
         break;
     case ShapeType::Quad:  // a mirror keeps u, v as mapped: the front face u x v turns over
-        out.p0 = xf.map.point(s.p0);
-        out.p1 = xf.map.vector(s.p1);
-        out.p2 = xf.map.vector(s.p2);
+        out.p0 = point(s.p0);
+        out.p1 = glm::vec3(xf.map.vector(s.p1));
+        out.p2 = glm::vec3(xf.map.vector(s.p2));
         break;
     case ShapeType::Triangle:
-        out.p0 = xf.map.point(s.p0);
-        out.p1 = xf.map.point(s.p1);
-        out.p2 = xf.map.point(s.p2);
+        out.p0 = point(s.p0);
+        out.p1 = point(s.p1);
+        out.p2 = point(s.p2);
         break;
     }
     return out;
+}
+
+/// scenejson::parallelOrZero on the file's doubles.
+bool parallelOrZero(glm::dvec3 a, glm::dvec3 b) {
+    const double c = glm::length(glm::cross(a, b));
+    return !(c > 1e-6 * glm::length(a) * glm::length(b));  // also true for NaN
 }
 
 /// One entry of "objects": its shapes in world space (a box gives six quads).
@@ -85,11 +96,11 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
     ObjectTransform xf;
     if (auto t = o.optional("transform")) xf = readTransform(*t);
 
-    std::vector<Shape> local;
+    std::vector<LocalShape> local;
     if (type == "sphere") {
-        Shape s;
+        LocalShape s;
         s.type = ShapeType::Sphere;
-        s.p0 = o.vec3("center");
+        s.p0 = o.dvec3("center");
         s.radius = o.number("radius", json::Range::above(0.0));
         if (!xf.nonUniformAt.empty()) {
             throw InputError(json::formatError(
@@ -97,14 +108,14 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         }
         local.push_back(s);
     } else if (type == "quad") {
-        Shape s = makeQuad(o.vec3("Q"), o.vec3("u"), o.vec3("v"));
-        if (s.p1 == glm::vec3(0.0f)) o.required("u").fail("must not be zero");
+        LocalShape s = makeQuad(o.dvec3("Q"), o.dvec3("u"), o.dvec3("v"));
+        if (s.p1 == glm::dvec3(0.0)) o.required("u").fail("must not be zero");
         if (parallelOrZero(s.p1, s.p2)) o.required("v").fail("must not be zero or parallel to u (u x v = 0)");
         local.push_back(s);
     } else if (type == "box") {
-        const glm::vec3 lo = o.vec3("min");
+        const glm::dvec3 lo = o.dvec3("min");
         const json::Value maxValue = o.required("max");
-        const glm::vec3 hi = maxValue.vec3();
+        const glm::dvec3 hi = maxValue.dvec3();
         for (std::size_t i = 0; i < 3; ++i) {
             const int k = static_cast<int>(i);
             if (!(hi[k] > lo[k])) {
@@ -115,24 +126,24 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         }
         local = boxFaces(lo, hi);
     } else {
-        Shape s;
+        LocalShape s;
         s.type = ShapeType::Triangle;
-        s.p0 = o.vec3("v0");
-        s.p1 = o.vec3("v1");
-        s.p2 = o.vec3("v2");
+        s.p0 = o.dvec3("v0");
+        s.p1 = o.dvec3("v1");
+        s.p2 = o.dvec3("v2");
         local.push_back(s);
     }
     o.finish();
 
     const bool sampled = emits || sample;
     std::vector<Shape> out;
-    for (const Shape& s : local) {
-        Shape w = transformed(s, xf);
+    for (const LocalShape& s : local) {
+        Shape w = transformed(s, xf, scene.origin);
         w.material = material;
         w.sampled = sampled;
         if (!finite(w.p0) || !finite(w.p1) || !finite(w.p2) || !std::isfinite(w.radius) ||
             (w.type == ShapeType::Sphere && !(w.radius > 0.0f))) {
-            v.fail("the transformed " + type + " does not fit 32-bit floats (overflow or underflow)");
+            v.fail("the transformed " + type + " does not fit 32-bit floats relative to the camera (overflow or underflow)");
         }
         if (w.type == ShapeType::Quad && parallelOrZero(w.p1, w.p2)) {
             o.required("transform").fail("makes the " + type + " degenerate (u x v = 0 in 32-bit floats)");
@@ -178,6 +189,8 @@ void readGltfObject(const json::Value& v, const std::map<std::string, std::uint3
         include.transform = glm::dmat4(a.linear);
         include.transform[3] = glm::dvec4(a.offset, 1.0);
     }
+    // Into the camera-relative frame, in double, before the file's vertices become float.
+    include.transform[3] -= glm::dvec4(scene.origin, 0.0);
     if (auto m = o.optional("material")) {
         const std::string matName = m->string();
         const auto found = index.find(matName);

@@ -16,8 +16,10 @@ inline constexpr std::uint32_t kMaxSpp = 1u << 24;
 /// Largest max_depth (the shader's loop guard ends longer paths anyway).
 inline constexpr std::uint32_t kMaxDepth = 1024;
 
-/// "camera": the book's camera; focus_dist defaults to |lookfrom - lookat|.
-Camera readCamera(const json::Value& v);
+/// "camera": the book's camera; focus_dist defaults to |lookfrom - lookat|. lookfrom (read in
+/// double) is returned as origin, the camera-relative frame's origin in the file's coordinates;
+/// the camera itself is expressed in that frame (lookfrom = 0, lookat = lookat - lookfrom).
+Camera readCamera(const json::Value& v, glm::dvec3& origin);
 /// "render": spp, max_depth, background, seed (all optional).
 RenderSettings readRender(const json::Value& v);
 /// "materials": name -> material, appended in file order; index maps a name to its position.

@@ -73,22 +73,22 @@ ObjectTransform readTransform(const json::Value& list) {
         }
         Affine a;
         if (auto t = o.optional("translate")) {
-            a = Affine::translate(glm::dvec3(t->vec3()));
+            a = Affine::translate(t->dvec3());
         } else if (auto rx = o.optional("rotate_x")) {
-            a = Affine::rotateX(rx->number());
+            a = Affine::rotateX(rx->real());
         } else if (auto ry = o.optional("rotate_y")) {
-            a = Affine::rotateY(ry->number());
+            a = Affine::rotateY(ry->real());
         } else if (auto rz = o.optional("rotate_z")) {
-            a = Affine::rotateZ(rz->number());
+            a = Affine::rotateZ(rz->real());
         } else if (auto sc = o.optional("scale")) {
             glm::dvec3 s;
             if (sc->json().is_array()) {
-                s = glm::dvec3(sc->vec3());
+                s = sc->dvec3();
                 for (std::size_t i = 0; i < 3; ++i) {
                     if (s[static_cast<int>(i)] == 0.0) sc->element(i).fail("must not be 0");
                 }
             } else {
-                s = glm::dvec3(sc->number());
+                s = glm::dvec3(sc->real());
                 if (s.x == 0.0) sc->fail("must not be 0");
             }
             const glm::dvec3 m = glm::abs(s);

@@ -17,8 +17,8 @@ struct Affine {
     glm::dmat3 linear{1.0};
     glm::dvec3 offset{0.0};
 
-    glm::vec3 point(glm::vec3 p) const { return glm::vec3(linear * glm::dvec3(p) + offset); }
-    glm::vec3 vector(glm::vec3 v) const { return glm::vec3(linear * glm::dvec3(v)); }
+    glm::dvec3 point(glm::dvec3 p) const { return linear * p + offset; }
+    glm::dvec3 vector(glm::dvec3 v) const { return linear * v; }
     /// This map followed by next.
     Affine then(const Affine& next) const { return {next.linear * linear, next.linear * offset + next.offset}; }
     bool mirrors() const { return glm::determinant(linear) < 0.0; }

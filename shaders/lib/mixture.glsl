@@ -14,7 +14,9 @@
 /// The mixture applies at this vertex: the `mixture` sampler and something to sample besides the BSDF.
 bool mixtureOn(Bsdf b) { return SAMPLER == SAMPLER_MIXTURE && !bsdfIsDelta(b) && mixtureLightCount() > 0u; }
 
-/// One direction dir from the mixture at x (BSDF b; uStrategy picks the half, u = bsdfNumbers(b, .),
+/// One direction dir from the mixture at x, the offset origin the next ray starts from (so that a
+/// light sample points at the light from where the ray leaves: a tiny light is missed otherwise),
+/// BSDF b; uStrategy picks the half, u = bsdfNumbers(b, .),
 /// whose last two numbers also drive the light sample); beta *= f cos / p. Returns false when the
 /// sample carries nothing (no direction from the chosen strategy, or one below the surface).
 bool sampleMixture(Bsdf b, vec3 x, float uStrategy, vec3 u, inout vec3 beta, out vec3 dir, inout uint passes) {

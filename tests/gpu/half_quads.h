@@ -15,6 +15,7 @@
 #include "render/gpu_scene.h"
 #include "test_gpu_analytic_common.h"
 #include "test_paths.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 
@@ -45,7 +46,7 @@ enum class Half { Left, Right, Whole };
 /// The pixels whose footprint (corners pushed out by 0.02 pixel) lies on quad q, in `half`.
 inline std::vector<Pixel> halfQuadPixels(const Scene& scene, int q, Half half) {
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     auto plane = [&](double px, double py) {  // where the ray through image point (px, py) meets z = 0
         const glm::dvec3 o(f.origin), t = glm::dvec3(f.pixel00) + px * glm::dvec3(f.pixelDu) + py * glm::dvec3(f.pixelDv);
         const double s = o.z / (o.z - t.z);

@@ -19,6 +19,7 @@
 #include "test_gpu_analytic_common.h"
 #include "test_paths.h"
 #include "texture_scene.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -50,7 +51,7 @@ TEST(GpuAlpha, MaskHolesShowTheBackgroundExactly) {
         const TexturePack pack = packTextures(scene);
         gTexels = &pack.texels;
         gpu::GpuFrame f{};
-        packCamera(scene.camera, f);
+        packFileFrameCamera(scene, f);
         const std::uint32_t mi = materialNamed(scene, "mask");
         const float factorAlpha = scene.materials[mi].pbr.baseColor.w, cutoff = scene.materials[mi].pbr.alphaCutoff;
         const Slot base = slotOf(pack, mi, kTexSlotBaseColor);
@@ -94,7 +95,7 @@ TEST(GpuAlpha, BlendAveragesSurfaceAndBackground) {
         const Scene scene = alphaScene(4 + std::uint32_t(s));
         const PixelStats st(renderSums(dev, scene, s, spp, "alpha.gltf"));
         gpu::GpuFrame f{};
-        packCamera(scene.camera, f);
+        packFileFrameCamera(scene, f);
         const Material& m = scene.materials.at(materialNamed(scene, "blend"));
         const std::vector<Pixel> px = insideTexels(f, kWidth, kHeight, kQuads, 1, {});
         ASSERT_GT(px.size(), 3000u);

@@ -24,6 +24,7 @@
 #include "gpu_env.h"
 #include "render/gpu_scene.h"
 #include "test_gpu_analytic_common.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -90,7 +91,7 @@ void checkPlane(VulkanDevice& dev, const std::string& lightJson, const std::stri
     const double L = 10.0;
     Scene scene = planeScene(lightJson, 1);
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     // Expected pixel values: (rho / pi) * L * mean E over the footprint (for each channel).
     std::vector<double> expected(16 * 16);
     double eMin = 1e30, eMax = 0;
@@ -169,7 +170,7 @@ TEST(GpuAnalytic, PlaneUnderThreeLightsEveryPickAndLightSampling) {
                   {"type": "sphere", "center": [-3, 0, 1.2], "radius": 0.5, "material": "lampS"}]})",
                                  "plane-three-lights.json");
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     const glm::dvec3 n(0, 0, 1);
     std::vector<double> expected(16 * 16);
     for (std::uint32_t j = 0; j < 16; ++j)

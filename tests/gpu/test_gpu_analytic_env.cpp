@@ -25,6 +25,7 @@
 #include "shared/environment_map.h"
 #include "test_gpu_analytic_common.h"
 #include "test_paths.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -52,7 +53,7 @@ TEST(GpuAnalyticEnv, ConvexFurnaceUnderConstantMap) {
     ASSERT_TRUE(scene.environment.hasMap());
     const glm::dvec3 albedo(0.2, 0.5, 0.8);
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     // Pixels whose whole square sees the sphere (corners inside the silhouette disc), and pixels
     // 2 px away from it. The disc has radius tan(asin(1/4)) * 4 = 1.033 on the plane z = 0.
     std::vector<Pixel> inside, outside;

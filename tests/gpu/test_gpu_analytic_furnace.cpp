@@ -9,6 +9,7 @@
 #include "gpu_env.h"
 #include "render/gpu_scene.h"
 #include "test_gpu_analytic_common.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -49,7 +50,7 @@ TEST(GpuAnalytic, ConvexFurnaceWithSampledSphere) {
                                  "convex-furnace.json");
     const glm::dvec3 albedo(0.2, 0.5, 0.8);
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     const glm::dvec3 o(f.origin);
     std::vector<Pixel> inside, outside;
     for (std::uint32_t y = 0; y < 24; ++y)

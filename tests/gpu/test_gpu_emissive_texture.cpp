@@ -23,6 +23,7 @@
 #include "test_gpu_analytic_common.h"
 #include "test_paths.h"
 #include "texture_scene.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -54,7 +55,7 @@ TEST(GpuEmissiveTexture, LampPixelsAreTheTexturedEmission) {
         const TexturePack pack = packTextures(scene);
         gTexels = &pack.texels;
         gpu::GpuFrame f{};
-        packCamera(scene.camera, f);
+        packFileFrameCamera(scene, f);
         const std::uint32_t mi = materialNamed(scene, "lamp");
         const glm::vec3 emit = scene.materials[mi].emit;  // factor x strength
         const Slot tex = slotOf(pack, mi, kTexSlotEmissive);
@@ -118,7 +119,7 @@ Scene spotScene(std::uint32_t seed) {
 // level exactly, 8 x srgbToLinear(1/255) x area; the triangles of the bright cell get ~98 % of the
 // total, against 2/128 when every triangle had the texture's mean (the pick before issue 6).
 TEST(GpuEmissiveTexture, LightPowerFollowsEachTrianglesFootprint) {
-    const Scene scene = spotScene(1);
+    const Scene scene = inFileFrame(spotScene(1));  // the cells are stated in the file's coordinates
     const std::uint32_t mi = materialNamed(scene, "spot");
     const double dark = 8.0 * gpu::srgbToLinear(1.0f / 255.0f);  // luminance: grey
     std::vector<double> power;

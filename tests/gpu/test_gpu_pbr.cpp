@@ -22,6 +22,7 @@
 #include "shared/microfacet.h"
 #include "stat_suite.h"
 #include "test_gpu_analytic_common.h"
+#include "file_frame.h"
 
 namespace vkp::test {
 namespace {
@@ -70,7 +71,7 @@ double hitCosine(glm::dvec3 o, glm::dvec3 d) {
 /// Pixels whose four corners all see the sphere (the silhouette is convex: the whole pixel does).
 std::vector<Pixel> spherePixels(const Scene& scene) {
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     const glm::dvec3 o(f.origin);
     std::vector<Pixel> out;
     for (std::uint32_t y = 0; y < kFurnaceSize; ++y)
@@ -90,7 +91,7 @@ Estimate hostFurnace(const Scene& scene, const std::vector<Pixel>& pixels, int c
     const gpu::GltfBrdf b = gpu::makeGltfBrdf(glm::vec3(m.pbr.baseColor), m.pbr.metallic, m.pbr.roughness, m.pbr.specular,
                                               m.pbr.specularColor);
     gpu::GpuFrame f{};
-    packCamera(scene.camera, f);
+    packFileFrameCamera(scene, f);
     const glm::dvec3 o(f.origin);
     UniformSource rng(seed);
     Estimate e;

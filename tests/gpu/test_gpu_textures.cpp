@@ -39,6 +39,7 @@
 #include "texture_test.spv.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
+#include "file_frame.h"
 
 
 namespace vkp::test {
@@ -174,7 +175,7 @@ TexturedRender renderTextures(VulkanDevice& dev, Sampler s, std::uint32_t spp, s
     EXPECT_EQ(scene.camera.width, kWidth);
     PixelStats st(renderSums(dev, scene, s, spp, "textures.gltf"));
     TexturedRender r{scene, packTextures(scene), gpu::GpuFrame{}, st};
-    packCamera(r.scene.camera, r.frame);
+    packFileFrameCamera(r.scene, r.frame);
     return r;
 }
 

@@ -8,6 +8,8 @@
 // placed by their maps, are exactly the `--instancing flatten` triangles with their materials.
 #include <gtest/gtest.h>
 
+#include "file_frame.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -60,6 +62,7 @@ std::string sceneText() {
 Scene load(bool instancing) {
     SceneJsonOptions o;
     o.instancing = instancing;
+    // Camera-relative, as loaded: the flattened and the instanced triangles are placed by the same double matrices.
     return parseSceneJson(sceneText(), test::scratchDir("gltf_json_instancing") / "scene.json", o);
 }
 
@@ -83,8 +86,8 @@ bool near(const glm::dmat4& a, const glm::dmat4& b) {
 }
 
 TEST(GltfJsonInstancing, EachFileIsStoredOnceAndEveryIncludePlacesInstances) {
-    const Scene s = load(true);
-    const Scene direct = loadSceneGltf(instancesFile());  // flattened: the file's own materials and lights
+    const Scene s = vkp::test::inFileFrame(load(true));  // compared with matrices in the file's coordinates
+    const Scene direct = vkp::test::inFileFrame(loadSceneGltf(instancesFile()));  // flattened: the file's own materials and lights
     // Materials: grey, red, then the file's once (the second include without override reuses them;
     // the override adds none).
     EXPECT_EQ(s.materials.size(), 2u + direct.materials.size());
@@ -111,7 +114,7 @@ TEST(GltfJsonInstancing, EachFileIsStoredOnceAndEveryIncludePlacesInstances) {
     const Scene directInst = [] {
         GltfOptions o;
         o.instancing = true;
-        return loadSceneGltf(instancesFile(), o);
+        return vkp::test::inFileFrame(loadSceneGltf(instancesFile(), o));
     }();
     ASSERT_EQ(directInst.instances.size(), 7u);
     for (const MeshInstance& d : directInst.instances) {
@@ -183,8 +186,8 @@ TEST(GltfJsonInstancing, OneIncludePerFileInstancesOnlyMeshesOfSeveralNodes) {
     // include.json: hierarchy.gltf and modes.gltf once each: the same triangles drawn either way.
     SceneJsonOptions o;
     o.instancing = true;
-    const Scene s = loadSceneJson(test::scenesDir() / "gltf" / "include.json", o);
-    const Scene f = loadSceneJson(test::scenesDir() / "gltf" / "include.json");
+    const Scene s = vkp::test::inFileFrame(loadSceneJson(test::scenesDir() / "gltf" / "include.json", o));
+    const Scene f = vkp::test::inFileFrame(loadSceneJson(test::scenesDir() / "gltf" / "include.json"));
     EXPECT_TRUE(f.instances.empty());
     std::size_t drawn = s.shapes.size();
     for (const MeshInstance& i : s.instances) drawn += s.meshes[i.mesh].shapes.size();
@@ -195,7 +198,7 @@ TEST(GltfJsonInstancing, OneIncludePerFileInstancesOnlyMeshesOfSeveralNodes) {
         R"({"camera":{"lookfrom":[0,3,20],"lookat":[0,0,0],"vup":[0,1,0],"vfov":40,"width":8,"height":8},)"
         R"("materials":{"m":{"type":"lambertian","albedo":[0.5,0.5,0.5]}},)"
         R"("objects":[{"type":"gltf","file":")" + instancesFile().string() + R"("}]})";
-    const Scene once = parseSceneJson(text, test::scratchDir("gltf_json_instancing") / "once.json", o);
+    const Scene once = vkp::test::inFileFrame(parseSceneJson(text, test::scratchDir("gltf_json_instancing") / "once.json", o));
     EXPECT_EQ(once.meshes.size(), 2u);
     EXPECT_EQ(once.instances.size(), 7u);
     EXPECT_EQ(once.shapes.size(), 8u);

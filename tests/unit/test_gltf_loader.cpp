@@ -4,6 +4,8 @@
 // and glTF files included in a JSON scene.
 #include <gtest/gtest.h>
 
+#include "file_frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -53,7 +55,7 @@ protected:
 };
 
 TEST_F(BlenderCornell, LoadsWithoutWarningsAs36TrianglesAnd2Lights) {
-    const Scene s = loadSceneGltf(path_);
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(path_));
     EXPECT_TRUE(s.warnings.empty()) << (s.warnings.empty() ? "" : s.warnings[0]);
     ASSERT_EQ(s.shapes.size(), 36u);  // 5 walls + light: 2 triangles each; 2 boxes: 12 each
     for (const Shape& sh : s.shapes) EXPECT_EQ(sh.type, ShapeType::Triangle);
@@ -77,8 +79,8 @@ TEST_F(BlenderCornell, LoadsWithoutWarningsAs36TrianglesAnd2Lights) {
 }
 
 TEST_F(BlenderCornell, CameraMatchesCornellClassicJson) {
-    const Scene g = loadSceneGltf(path_);
-    const Scene j = loadSceneJson(test::scenesDir() / "cornell-classic.json");
+    const Scene g = vkp::test::inFileFrame(loadSceneGltf(path_));
+    const Scene j = vkp::test::inFileFrame(loadSceneJson(test::scenesDir() / "cornell-classic.json"));
     expectVec(g.camera.lookfrom, j.camera.lookfrom, 1e-3f, "lookfrom");
     expectVec(glm::normalize(g.camera.lookat - g.camera.lookfrom), glm::normalize(j.camera.lookat - j.camera.lookfrom),
               1e-6f, "view direction");
@@ -89,14 +91,14 @@ TEST_F(BlenderCornell, CameraMatchesCornellClassicJson) {
     EXPECT_EQ(g.camera.height, kGltfDefaultImageSide);
     GltfOptions o;
     o.width = 600;  // the other side follows the aspect ratio
-    const Scene g600 = loadSceneGltf(path_, o);
+    const Scene g600 = vkp::test::inFileFrame(loadSceneGltf(path_, o));
     EXPECT_EQ(g600.camera.width, j.camera.width);
     EXPECT_EQ(g600.camera.height, j.camera.height);
 }
 
 TEST_F(BlenderCornell, GeometryAndKernelMaterialsMatchCornellClassicJson) {
-    const Scene g = loadSceneGltf(path_);
-    const Scene j = loadSceneJson(test::scenesDir() / "cornell-classic.json");
+    const Scene g = vkp::test::inFileFrame(loadSceneGltf(path_));
+    const Scene j = vkp::test::inFileFrame(loadSceneJson(test::scenesDir() / "cornell-classic.json"));
     // Area per kernel material and the faces' orientation, quad by quad.
     std::map<std::string, double> areaG, areaJ;
     // The glTF walls are the glTF BRDF with metallic 0 (a specular layer over the JSON lambertian's
@@ -139,7 +141,7 @@ TEST_F(BlenderCornell, GeometryAndKernelMaterialsMatchCornellClassicJson) {
 // ---- Topologies, index types, the default material ----------------------------------------
 
 TEST(GltfLoader, EveryTopologyAndIndexType) {
-    const Scene s = loadSceneGltf(gltfScene("modes.gltf"));
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("modes.gltf")));
     EXPECT_TRUE(s.warnings.empty());
     ASSERT_EQ(s.shapes.size(), 14u);  // 4 x 2 (list), 2 (strip), 4 (fan)
     std::map<int, double> areaBySquare;
@@ -168,7 +170,7 @@ TEST(GltfLoader, EveryTopologyAndIndexType) {
 // ---- The node hierarchy ------------------------------------------------------------------
 
 TEST(GltfLoader, NodeHierarchyWithTrsMatrixMirrorAndZeroScale) {
-    const Scene s = loadSceneGltf(gltfScene("hierarchy.gltf"));  // default scene: 1
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("hierarchy.gltf")));  // default scene: 1
     // Depth first, children in order: trs, child (under matrix), mirror; the zero-scaled node is gone.
     ASSERT_EQ(s.shapes.size(), 3u);
     // trs: scale 2, rotate 90 degrees about z, translate (0,5,0), parent (10,0,0).
@@ -185,7 +187,7 @@ TEST(GltfLoader, NodeHierarchyWithTrsMatrixMirrorAndZeroScale) {
     }
     GltfOptions other;
     other.scene = 0;
-    const Scene s0 = loadSceneGltf(gltfScene("hierarchy.gltf"), other);
+    const Scene s0 = vkp::test::inFileFrame(loadSceneGltf(gltfScene("hierarchy.gltf"), other));
     ASSERT_EQ(s0.shapes.size(), 1u);
     EXPECT_TRUE(sameCorners(s0.shapes[0], {0, 0, 0}, {1, 0, 0}, {0, 1, 0}));
     GltfOptions missing;
@@ -202,7 +204,7 @@ TEST(GltfLoader, NodeHierarchyWithTrsMatrixMirrorAndZeroScale) {
 // ---- Accessors ---------------------------------------------------------------------------
 
 TEST(GltfLoader, StridedSparseNormalizedAndQuantizedAccessors) {
-    const Scene s = loadSceneGltf(gltfScene("accessors.glb"));
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("accessors.glb")));
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();  // KHR_mesh_quantization is implemented
     ASSERT_EQ(s.shapes.size(), 6u);
     // 0: interleaved float positions, int8 normalized normals, uint16 normalized UVs.
@@ -229,7 +231,7 @@ TEST(GltfLoader, StridedSparseNormalizedAndQuantizedAccessors) {
 // ---- Cameras -----------------------------------------------------------------------------
 
 TEST(GltfLoader, FirstPerspectiveCameraOrTheChosenOne) {
-    const Scene s = loadSceneGltf(gltfScene("cameras.gltf"));
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("cameras.gltf")));
     // camera 1 under a parent turned 90 degrees about +y: at (5,1,0) looking along -x.
     expectVec(s.camera.lookfrom, {5, 1, 0}, 1e-5f, "lookfrom");
     expectVec(glm::normalize(s.camera.lookat - s.camera.lookfrom), {-1, 0, 0}, 1e-6f, "view direction");
@@ -240,7 +242,7 @@ TEST(GltfLoader, FirstPerspectiveCameraOrTheChosenOne) {
 
     GltfOptions o;
     o.camera = 2;
-    const Scene s2 = loadSceneGltf(gltfScene("cameras.gltf"), o);
+    const Scene s2 = vkp::test::inFileFrame(loadSceneGltf(gltfScene("cameras.gltf"), o));
     expectVec(s2.camera.lookfrom, {0, 0, 10}, 1e-6f, "lookfrom");
     expectVec(glm::normalize(s2.camera.lookat - s2.camera.lookfrom), {0, 0, -1}, 1e-6f, "view direction");
     EXPECT_NEAR(s2.camera.vfov, 180.0 / std::numbers::pi, 1e-4);
@@ -253,7 +255,7 @@ TEST(GltfLoader, FirstPerspectiveCameraOrTheChosenOne) {
     GltfOptions both;
     both.width = 30;
     both.height = 40;
-    const Scene sb = loadSceneGltf(gltfScene("cameras.gltf"), both);
+    const Scene sb = vkp::test::inFileFrame(loadSceneGltf(gltfScene("cameras.gltf"), both));
     EXPECT_EQ(sb.camera.width, 30u);
     EXPECT_EQ(sb.camera.height, 40u);
 
@@ -272,7 +274,7 @@ TEST(GltfLoader, FirstPerspectiveCameraOrTheChosenOne) {
 }
 
 TEST(GltfLoader, WithoutCameraFramesTheBounds) {
-    const Scene s = loadSceneGltf(gltfScene("no-camera.gltf"));
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("no-camera.gltf")));
     ASSERT_EQ(s.shapes.size(), 12u);
     const glm::vec3 centre(3, 2, 1);
     for (const Shape& sh : s.shapes) {  // the cube's faces point outwards
@@ -299,7 +301,7 @@ TEST(GltfLoader, WithoutCameraFramesTheBounds) {
 // ---- Extensions --------------------------------------------------------------------------
 
 TEST(GltfLoader, AnExtensionOnlyUsedGivesOneWarningNamingIt) {
-    const Scene s = loadSceneGltf(gltfScene("extensions.gltf"));
+    const Scene s = vkp::test::inFileFrame(loadSceneGltf(gltfScene("extensions.gltf")));
     ASSERT_EQ(s.warnings.size(), 1u);
     EXPECT_NE(s.warnings[0].find("extension KHR_lights_punctual is not supported"), std::string::npos) << s.warnings[0];
     EXPECT_EQ(s.warnings[0].rfind(gltfScene("extensions.gltf").string() + ": extensionsUsed: ", 0), 0u) << s.warnings[0];
@@ -309,7 +311,7 @@ TEST(GltfLoader, AnExtensionOnlyUsedGivesOneWarningNamingIt) {
 // ---- glTF inside a JSON scene ------------------------------------------------------------
 
 TEST(GltfLoader, IncludedInAJsonSceneWithTransformAndMaterialOverride) {
-    const Scene s = loadSceneJson(gltfScene("include.json"));
+    const Scene s = vkp::test::inFileFrame(loadSceneJson(gltfScene("include.json")));
     ASSERT_EQ(s.shapes.size(), 1u + 3u + 14u);
     EXPECT_TRUE(s.warnings.empty());
     ASSERT_EQ(s.materials.size(), 3u);  // grey, ground, and hierarchy.gltf's default material
@@ -351,7 +353,7 @@ TEST(GltfLoader, IncludeErrorsNameTheJsonPointer) {
         }
     }
     // A relative file is found next to the JSON file.
-    const Scene ok = parseSceneJson(head + R"({"type":"gltf","file":"modes.gltf"}]})", dir / "scene.json");
+    const Scene ok = vkp::test::inFileFrame(parseSceneJson(head + R"({"type":"gltf","file":"modes.gltf"}]})", dir / "scene.json"));
     EXPECT_EQ(ok.shapes.size(), 14u);
 }
 

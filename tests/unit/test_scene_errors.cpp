@@ -81,7 +81,7 @@ std::vector<Case> cases() {
         {"vec3_type", cameraWith("lookfrom", "\"here\""), "/camera/lookfrom", "must be an array of 3 numbers (got string \"here\")"},
         {"vec3_length", cameraWith("lookfrom", "[0,5]"), "/camera/lookfrom", "must be an array of 3 numbers"},
         {"vec3_element_type", cameraWith("lookfrom", "[0,null,5]"), "/camera/lookfrom/1", "must be a number (got null)"},
-        {"float_overflow", cameraWith("lookat", "[1e39,0,0]"), "/camera/lookat/0", "must be a finite 32-bit float"},
+        {"float_overflow", cameraWith("lookat", "[1e39,0,0]"), "/camera/lookat", "is too far from lookfrom (distance overflows a float)"},
         {"vfov_zero", cameraWith("vfov", "0"), "/camera/vfov", "must be in (0, 180) (got 0)"},
         {"vfov_180", cameraWith("vfov", "180"), "/camera/vfov", "must be in (0, 180) (got 180)"},
         {"width_zero", cameraWith("width", "0"), "/camera/width", "must be an integer in [1, 16384] (got 0)"},
@@ -171,7 +171,11 @@ std::vector<Case> cases() {
         {"sphere_non_uniform", sphereWith(R"(,"radius":1,"transform":[{"scale":2},{"scale":[1,2,1]}])"),
          "/objects/0/transform/1/scale", "a sphere cannot be scaled non-uniformly"},
         {"transform_overflow", sphereWith(R"(,"radius":1,"transform":[{"translate":[3e38,0,0]},{"translate":[3e38,0,0]}])"),
-         "/objects/0", "does not fit 32-bit floats"},
+         "/objects/0", "does not fit 32-bit floats relative to the camera"},
+        // Coordinates are read in double and made camera-relative: 1e39 is a valid JSON number,
+        // but 1e39 from the camera is not a float.
+        {"far_from_camera", withObject(R"({"type":"triangle","v0":[0,0,0],"v1":[1e39,0,0],"v2":[0,1,0],"material":"m"})"),
+         "/objects/0", "the transformed triangle does not fit 32-bit floats relative to the camera"},
         // environment (files relative to the scene's folder; none of these exist)
         {"env_type", withEnv("[]"), "/environment", "must be an object"},
         {"env_file_missing_key", withEnv(R"({"strength":1})"), "/environment/file", "missing required key"},

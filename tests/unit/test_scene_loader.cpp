@@ -2,6 +2,8 @@
 // faces) and the conventions of scenes/README.md (transforms, lights, defaults).
 #include <gtest/gtest.h>
 
+#include "file_frame.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -34,7 +36,7 @@ glm::vec3 quadCentre(const Shape& s) { return s.p0 + 0.5f * (s.p1 + s.p2); }
 Scene parse(const std::string& materials, const std::string& objects, const std::string& extra = "") {
     const std::string text = R"({"camera":{"lookfrom":[0,0,5],"lookat":[0,0,0],"vup":[0,1,0],"vfov":40,"width":8,"height":8},)" +
                              extra + R"("materials":)" + materials + R"(,"objects":)" + objects + "}";
-    return vkp::parseSceneJson(text, "inline.json");
+    return vkp::test::inFileFrame(vkp::parseSceneJson(text, "inline.json"));
 }
 
 const std::string kGrey = R"({"grey":{"type":"lambertian","albedo":[0.5,0.5,0.5]}})";
@@ -53,7 +55,7 @@ void expectBoxFacesOutward(const Scene& s, std::size_t first) {
 }
 
 TEST(SceneLoader, CornellBook3) {
-    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "cornell-book3.json");
+    const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "cornell-book3.json"));
     ASSERT_EQ(s.shapes.size(), 13u);  // 5 walls + light + 6 box faces + sphere
     ASSERT_EQ(s.lights, (std::vector<std::uint32_t>{5, 12}));  // light quad, glass sphere
     ASSERT_EQ(s.materials.size(), 5u);
@@ -114,7 +116,7 @@ TEST(SceneLoader, CornellBook3) {
 }
 
 TEST(SceneLoader, CornellClassic) {
-    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "cornell-classic.json");
+    const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "cornell-classic.json"));
     ASSERT_EQ(s.shapes.size(), 18u);  // 5 walls + light + 2 boxes
     EXPECT_EQ(s.lights, (std::vector<std::uint32_t>{5}));
     for (const auto& m : s.materials) {
@@ -131,7 +133,7 @@ TEST(SceneLoader, CornellClassic) {
 }
 
 TEST(SceneLoader, SpheresBook1) {
-    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "spheres-book1.json");
+    const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "spheres-book1.json"));
     ASSERT_GE(s.shapes.size(), 4u + 400u);
     ASSERT_LE(s.shapes.size(), 4u + 22u * 22u);
     EXPECT_TRUE(s.lights.empty());
@@ -192,7 +194,7 @@ TEST(SceneLoader, SpheresBook1) {
 }
 
 TEST(SceneLoader, EnvSky) {
-    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "env-sky.json");
+    const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "env-sky.json"));
     ASSERT_TRUE(s.environment.hasMap());
     EXPECT_EQ(s.environment.file, vkp::test::scenesDir() / "env" / "sky.hdr");  // relative to the JSON file
     EXPECT_EQ(s.environment.image.width, 48u);
@@ -205,7 +207,7 @@ TEST(SceneLoader, EnvSky) {
 }
 
 TEST(SceneLoader, Furnace) {
-    const Scene s = vkp::loadSceneJson(vkp::test::scenesDir() / "furnace.json");
+    const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "furnace.json"));
     ASSERT_EQ(s.shapes.size(), 1u);
     EXPECT_TRUE(s.lights.empty());
     expectNear(s.render.background, {1, 1, 1});
@@ -363,7 +365,7 @@ TEST(SceneLoader, ReadmeExampleLoads) {
     ASSERT_NE(begin, std::string::npos);
     const std::size_t end = readme.find("```", begin + 8);
     ASSERT_NE(end, std::string::npos);
-    const Scene s = vkp::parseSceneJson(readme.substr(begin + 8, end - begin - 8), "README.md");
+    const Scene s = vkp::test::inFileFrame(vkp::parseSceneJson(readme.substr(begin + 8, end - begin - 8), "README.md"));
     ASSERT_EQ(s.shapes.size(), 10u);
     EXPECT_EQ(s.lights, (std::vector<std::uint32_t>{1, 2, 9}));
     expectNear(glm::normalize(quadNormal(s.shapes[0])), {0, 1, 0});
