@@ -224,7 +224,11 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         if (!shared[mi.mesh]) {
             for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
                 const std::uint32_t m = materials.material(mesh.primitives[p].material);
-                appendPrimitive(doc, mi.mesh, p, mi.world, m, scene);
+                try {
+                    appendPrimitive(doc, mi.mesh, p, mi.world, m, scene);
+                } catch (const InputError& e) {  // a mesh drawn by several nodes: say which one
+                    throw InputError(std::string(e.what()) + " (drawn by " + nodePlace(doc, mi.node) + ")");
+                }
             }
             continue;
         }

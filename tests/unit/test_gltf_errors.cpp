@@ -166,7 +166,7 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
          "accessor 1 (NORMAL of mesh 0 (\"tri\") primitive 0): element 2 is not finite"},
         // Relative to the camera (here the frame starts at the node's position: no camera in the file).
         {"overflow_by_node", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {1e39, 1e39, 1e39}; d["nodes"][0]["translation"] = {3e38, 0, 0}; },
-         kPos + "element 1 is outside the range of 32-bit floats once placed by its node, relative to the camera"},
+         kPos + "element 1 is outside the range of 32-bit floats once placed by its node, relative to the camera (drawn by node 0)"},
         // Meshes, nodes, scenes.
         {"mode_lines", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["mode"] = 1; },
          kPrim + "mode 1 (LINES) is not supported"},
