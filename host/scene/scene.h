@@ -1,6 +1,7 @@
 // The scene as the host sees it after loading: world-space shapes, materials, lights, camera.
 // Loaders (JSON: scene_json.cpp, glTF: gltf.h) produce it; the BVH builder and the renderer consume it.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -259,6 +260,9 @@ void forEachShape(const Scene& scene, F&& f) {
     for (const InstancedMesh& m : scene.meshes)
         for (const Shape& s : m.shapes) f(s);
 }
+
+/// Every component of p is finite (a position that fits a float).
+inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 /// Re-express the scene's shapes and instance matrices relative to the point origin + by (in
 /// double, rounded to float once): Scene::origin grows by by. The camera is not moved (the caller

@@ -6,15 +6,11 @@
 
 namespace vkp {
 
-namespace {
-bool finiteFloat(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-}  // namespace
-
 void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why) {
     if (by == glm::dvec3(0.0)) return;
     auto move = [&](glm::vec3& p, std::size_t shape) {
         p = glm::vec3(glm::dvec3(p) - by);
-        if (!finiteFloat(p)) {
+        if (!allFinite(p)) {
             throw InputError(scene.path.string() + ": " + std::string(why) + ": shape " + std::to_string(shape) +
                              " is outside the range of 32-bit floats relative to the camera");
         }

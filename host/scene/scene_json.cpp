@@ -14,14 +14,9 @@ namespace scenejson {
 
 using json::Range;
 
-namespace {
-bool finiteFloat(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-}  // namespace
-
-bool parallelOrZero(glm::vec3 a, glm::vec3 b) {
-    const glm::dvec3 da(a), db(b);
-    const double c = glm::length(glm::cross(da, db));
-    return !(c > 1e-6 * glm::length(da) * glm::length(db));  // also true for NaN
+bool parallelOrZero(glm::dvec3 a, glm::dvec3 b) {
+    const double c = glm::length(glm::cross(a, b));
+    return !(c > 1e-6 * glm::length(a) * glm::length(b));  // also true for NaN
 }
 
 Camera readCamera(const json::Value& v, glm::dvec3& origin) {
@@ -40,7 +35,7 @@ Camera readCamera(const json::Value& v, glm::dvec3& origin) {
     const double dist = glm::length(view);
     if (dist == 0.0) o.required("lookat").fail("must differ from lookfrom (the view direction is lookat - lookfrom)");
     c.lookat = glm::vec3(view);
-    if (!std::isfinite(static_cast<float>(dist)) || !finiteFloat(c.lookat)) {
+    if (!std::isfinite(static_cast<float>(dist)) || !allFinite(c.lookat)) {
         o.required("lookat").fail("is too far from lookfrom (distance overflows a float)");
     }
     if (c.vup == glm::vec3(0.0f)) o.required("vup").fail("must not be zero");

@@ -40,8 +40,6 @@ std::vector<LocalShape> boxFaces(glm::dvec3 a, glm::dvec3 b) {
     };
 }
 
-bool finite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
 /// Apply the object's transform to one shape (spheres: centre moves, radius scales) in double,
 /// then express its points relative to origin (the camera) and round to float: the only place
 /// where a JSON object's coordinates become float (docs/design.md "Camera-relative space").
@@ -66,12 +64,6 @@ Shape transformed(const LocalShape& s, const ObjectTransform& xf, glm::dvec3 ori
         break;
     }
     return out;
-}
-
-/// scenejson::parallelOrZero on the file's doubles.
-bool parallelOrZero(glm::dvec3 a, glm::dvec3 b) {
-    const double c = glm::length(glm::cross(a, b));
-    return !(c > 1e-6 * glm::length(a) * glm::length(b));  // also true for NaN
 }
 
 /// One entry of "objects": its shapes in world space (a box gives six quads).
@@ -141,7 +133,7 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         Shape w = transformed(s, xf, scene.origin);
         w.material = material;
         w.sampled = sampled;
-        if (!finite(w.p0) || !finite(w.p1) || !finite(w.p2) || !std::isfinite(w.radius) ||
+        if (!allFinite(w.p0) || !allFinite(w.p1) || !allFinite(w.p2) || !std::isfinite(w.radius) ||
             (w.type == ShapeType::Sphere && !(w.radius > 0.0f))) {
             v.fail("the transformed " + type + " does not fit 32-bit floats relative to the camera (overflow or underflow)");
         }

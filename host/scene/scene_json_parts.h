@@ -33,7 +33,9 @@ void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t
 /// rotate_y. Image problems are reported at /environment/file.
 Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile);
 
-/// |a x b| <= 1e-6 |a| |b|: a and b are parallel (to float precision) or one of them is zero.
-bool parallelOrZero(glm::vec3 a, glm::vec3 b);
+/// |a x b| <= 1e-6 |a| |b| (in double): a and b are parallel (to float precision) or one of them
+/// is zero (also true for NaN).
+bool parallelOrZero(glm::dvec3 a, glm::dvec3 b);
+inline bool parallelOrZero(glm::vec3 a, glm::vec3 b) { return parallelOrZero(glm::dvec3(a), glm::dvec3(b)); }
 
 }  // namespace vkp::scenejson
