@@ -66,12 +66,12 @@ def main():
     p.add_argument("--scene", default=str(ROOT / "scenes" / "cornell-classic.json"))
     p.add_argument("--size", type=int, default=128)
     p.add_argument("--spp", type=int, default=512)
-    p.add_argument("--scales", action="store_true", help="also scale by 1e-6, 1e-3, 1e3, 1e6")
+    p.add_argument("--scales", action="store_true", help="also scale by 1e-6, 1e-5, 1e-4, 1e-3, 1e3, 1e6")
     o, extra = p.parse_known_args()
     doc = json.loads(Path(o.scene).read_text())
     moves = [(m * np.array(d), 1.0) for m in (1e5, 1e6, 1e7) for d in ((1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1))]
     if o.scales:
-        moves += [(np.zeros(3), s) for s in (1e-6, 1e-3, 1e3, 1e6)]
+        moves += [(np.zeros(3), s) for s in (1e-6, 1e-5, 1e-4, 1e-3, 1e3, 1e6)]
     with tempfile.TemporaryDirectory() as tmp:
         base, _ = render(o.vkpath, doc, tmp, o, extra)
         bb = blocks(base)

@@ -32,7 +32,8 @@ const char* usageText() {
 
 usage:
   vkpath render SCENE [options]        render a scene: .json, .gltf or .glb (default output: SCENE's name .png)
-  vkpath info SCENE                    primitives, lights, BVH statistics, shader variant
+  vkpath info SCENE                    primitives, lights, BVH statistics, shader variant, and whether
+                                       the render fits the device (takes --width, --height, --device)
   vkpath devices [--validate]          list Vulkan devices and why any is unusable
   vkpath --help | --version
 
@@ -117,14 +118,15 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else usage("--instancing must be auto or flatten, got '" + v + "'");
             continue;
         }
+        // The image size decides whether a render fits the device: `vkpath info` checks it too.
+        if (f == "--width") { a.width = parseUint(f, value(f), 1, 16384); continue; }
+        if (f == "--height") { a.height = parseUint(f, value(f), 1, 16384); continue; }
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;
             if (f == "-o") a.session.outputs.emplace_back(value(f));
             else if (f == "--spp") a.spp = parseUint(f, value(f), 1, 1u << 24);
             else if (f == "--time") a.session.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
-            else if (f == "--width") a.width = parseUint(f, value(f), 1, 16384);
-            else if (f == "--height") a.height = parseUint(f, value(f), 1, 16384);
             else if (f == "--max-depth") a.maxDepth = parseUint(f, value(f), 1, 1024);
             else if (f == "--rr-depth") a.rouletteDepth = parseUint(f, value(f), 1, 1024);
             else if (f == "--seed") a.seed = parseUint(f, value(f), 0, 0xffffffffu);

@@ -223,6 +223,32 @@ int runInfo(const CliArgs& a) {
     std::printf("device data  %s of scene buffers, %s of per-pixel buffers at %ux%u\n", megabytes(arrays.sceneBytes()).c_str(),
                 megabytes(arrays.pixelBytes()).c_str(), scene.camera.width, scene.camera.height);
     std::printf("variant      %s\n", f.name().c_str());
+    // The device check a render makes before it allocates anything (fitProblem, planBands): the
+    // same device (--device), its own limits. A scene is still described without a device.
+    std::optional<VulkanInstance> instance;
+    try {
+        instance.emplace(a.validate);
+    } catch (const DeviceError& e) {
+        std::printf("device       none: %s\n", e.what());
+        return kExitOk;
+    }
+    const DeviceChoice choice = selectDevice(instance->devices(), a.device);
+    if (!choice.index && !a.device.empty()) throw DeviceError(choice.error);  // --device names none
+    if (!choice.index) {
+        std::printf("device       none usable: %s\n", choice.error.c_str());
+        return kExitOk;
+    }
+    const DeviceInfo& d = instance->devices()[*choice.index];
+    const DeviceLimits limits = deviceLimits(d);
+    if (const std::string problem = fitProblem(arrays, limits); !problem.empty()) {
+        std::printf("device       %s: the render does not fit\n", d.name.c_str());
+        std::fprintf(stderr, "vkpath: error: %s\n", problem.c_str());
+        return kExitNoDevice;
+    }
+    const std::size_t bands = planBands(arrays, limits).size();
+    std::printf("device       %s: fits (%zu band%s of rows; storage-buffer range %s, texel-buffer elements %llu)\n",
+                d.name.c_str(), bands, bands == 1 ? "" : "s", megabytes(limits.maxStorageBufferRange).c_str(),
+                static_cast<unsigned long long>(limits.maxTexelBufferElements));
     return kExitOk;
 }
 

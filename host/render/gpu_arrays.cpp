@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 #include <stdexcept>
 
 #include "bvh/wide_pack.h"
@@ -12,6 +14,7 @@
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
 #include "render/texture_pack.h"
+#include "shared/ray_offset.h"
 #include "vk/device_select.h"
 
 namespace vkp {
@@ -46,6 +49,19 @@ std::uint64_t hostPhysicalMemory() {
     return pages > 0 && page > 0 ? std::uint64_t(pages) * std::uint64_t(page) : 0;
 }
 
+float sceneExtent(const FlatBvh& bvh) {
+    // The root's two child boxes bound everything the kernel can hit (instances placed in the
+    // world included); an empty child's inverted box is skipped.
+    float extent = 0.0f;
+    if (bvh.nodes.empty()) return extent;
+    const gpu::GpuNode& root = bvh.nodes[0];
+    for (const auto& [lo, hi] : {std::pair(root.a, root.b), std::pair(root.c, root.d)}) {
+        if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) continue;
+        for (int i = 0; i < 3; ++i) extent = std::max({extent, std::abs(lo[i]), std::abs(hi[i])});
+    }
+    return extent;
+}
+
 GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOptions& options) {
     if (bvh.instances.size() != scene.instances.size())
         throw std::invalid_argument("packGpuArrays: the BVH was not built with the scene's instances (use buildSceneBvh)");
@@ -60,6 +76,7 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     a.nodes = bvh.wideNodes.empty() ? buildWideNodes(bvh) : bvh.wideNodes;
     a.prims = bvh.prims;
     a.frame = packFrame(scene, options.lightPick, glm::uvec2(options.workgroupX, options.workgroupY));
+    a.frame.origin.w = gpu::rayOffsetScale(sceneExtent(bvh));
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
     for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
         for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3}) a.materials.push_back(t);

@@ -107,6 +107,11 @@ struct Band {
 /// then refuses the render). Splitting changes no pixel's sums: each pixel's samples are the same.
 std::vector<Band> planBands(const GpuArrays& arrays, const DeviceLimits& limits);
 
+/// The largest absolute coordinate (world units, camera-relative) of the box of everything the
+/// kernel can hit: the root node's child boxes. 0 for an empty BVH. Its rayOffsetScale
+/// (shared/ray_offset.h) goes to the kernel in GpuFrame::origin.w.
+float sceneExtent(const FlatBvh& bvh);
+
 /// Packs everything the kernel reads for `scene` (with the BVH built for it by buildSceneBvh) and
 /// `options`. Throws std::invalid_argument when the BVH was not built with the scene's instances.
 GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOptions& options);

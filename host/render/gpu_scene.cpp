@@ -31,7 +31,7 @@ void packCamera(const Camera& cam, gpu::GpuFrame& frame) {
     const glm::vec3 dv = viewportV / float(cam.height);
     const glm::vec3 upperLeft = cam.lookfrom - cam.focusDist * w - viewportU / 2.0f - viewportV / 2.0f;
     const float defocusRadius = cam.focusDist * std::tan(glm::radians(cam.defocusAngle / 2.0f));
-    frame.origin = v4(cam.lookfrom);
+    frame.origin = v4(cam.lookfrom, 1.0f);  // w: the ray offset's scale, set from the BVH by packGpuArrays
     frame.pixel00 = v4(upperLeft + 0.5f * (du + dv));
     frame.pixelDu = v4(du);
     frame.pixelDv = v4(dv);

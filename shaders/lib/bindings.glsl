@@ -15,6 +15,8 @@
 #define VKP_SHADING_NORMALS HAS_VERTEX_ATTRIBUTES
 
 layout(set = 0, binding = VKP_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
+/// The scale of the ray offset's absolute floor for this scene (shared/ray_offset.h rayOffsetScale).
+float sceneOffsetScale() { return frame.origin.w; }
 layout(set = 0, binding = VKP_BINDING_NODES) uniform usamplerBuffer uNodes;
 layout(set = 0, binding = VKP_BINDING_PRIMS) uniform usamplerBuffer uPrims;
 layout(set = 0, binding = VKP_BINDING_MATERIALS) uniform usamplerBuffer uMaterials;

@@ -34,7 +34,7 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     float pEnv = envPickProb();
     LightRay r;
     float pick;
-    if (uStrategy < pEnv) {
+    if (!HAS_EMITTERS || uStrategy < pEnv) {  // without emitters pEnv is 1: the variant drops their branch
         r = sampleEnvironmentLight(b.n, xo, uLight, passes);
         pick = pEnv;
     } else {
@@ -46,11 +46,15 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     // No shadow ray towards nothing, towards a light's back or below the surface.
     if (!(r.pdf > 0.0f) || !(bsdfCosine(b, r.dir) > 0.0f) || !(max(r.le.x, max(r.le.y, r.le.z)) > 0.0f))
         return vec3(0.0f);
-    rays++;
-    if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);
+    // Everything but the visibility first: only this contribution stays live across the shadow
+    // ray's traversal loop (on a SIMD device such as lavapipe, the BSDF's state would otherwise
+    // occupy registers, or spill, for every pass of that loop).
     float pl = r.pdf * pick;
     float w = neeWeighted(b) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
-    return evalBsdf(b, beta, r.dir) * r.le * (w / pl);
+    vec3 contribution = evalBsdf(b, beta, r.dir) * r.le * (w / pl);
+    rays++;
+    if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);
+    return contribution;
 }
 
 /// Density with which next-event estimation reaches the emitting primitive p from x along d (its
@@ -66,7 +70,7 @@ float emitterHitPdf(GpuPrim p, vec3 x, vec3 d) {
 /// estimation would have sampled it (emitterHitPdf). 1 for the samplers without next-event
 /// estimation. The `light` sampler needs it only where a glossy BSDF occurs (VKP_HAS_GLOSSY_BSDF).
 float foundLightWeight(float prevBsdfPdf, GpuPrim p, vec3 prevX, vec3 d) {
-    bool weighted = SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF);
+    bool weighted = HAS_EMITTERS && (SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF));
     if (!weighted || !(prevBsdfPdf > 0.0f) || primLight(p) < 0) return 1.0f;
     return powerHeuristic(prevBsdfPdf, emitterHitPdf(p, prevX, d));
 }

@@ -51,6 +51,6 @@ bool findSurface(vec3 o, vec3 d, out SurfaceHit h, inout uint passes) {
 }
 
 /// The origin of a ray leaving the hit on the side of normal n (h.ns or -h.ns).
-vec3 spawnFrom(SurfaceHit h, vec3 n) { return spawnRayOriginExtra(h.p, h.ab, h.x, n, h.extraOffset); }
+vec3 spawnFrom(SurfaceHit h, vec3 n) { return spawnRayOriginExtra(h.p, h.ab, h.x, n, h.extraOffset, sceneOffsetScale()); }
 
 #endif

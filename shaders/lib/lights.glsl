@@ -128,7 +128,7 @@ LightRay sampleEmitter(uint li, vec3 x, vec3 xo, uint prim, GpuPrim p, vec2 u) {
         emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
         vec3 nl = primNormal(lp, lx);
         r.le = emitted(lm, ls.dir, nl);
-        vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl));  // between offset end points
+        vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl), sceneOffsetScale());  // between offset end points
         r.shadowDir = vec3(sr.x, sr.y, sr.z);
         r.shadowLength = sr.w;
     }

@@ -72,7 +72,8 @@ const uint GPU_LIGHT_TEXELS = 1u;
 // Camera of "Ray Tracing in One Weekend" sec. 13: pixel (i,j) centre = pixel00 + i du + j dv,
 // where row j = 0 is the top of the image; defocus disk = origin + a du_lens + b dv_lens.
 struct GpuFrame {
-    vec4 origin;      // xyz: camera centre (world units)
+    vec4 origin;      // xyz: camera centre (world units); w: the ray offset's scale (shared/ray_offset.h
+                      // rayOffsetScale of the scene's extent)
     vec4 pixel00;     // xyz: centre of pixel (0,0)
     vec4 pixelDu;     // xyz: step to the next column (+u)
     vec4 pixelDv;     // xyz: step to the next row (-v)

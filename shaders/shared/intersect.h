@@ -210,16 +210,17 @@ VKP_FN float primOffsetDistance(GpuPrim p, vec2 ab, vec3 n) {
 }
 
 /// Origin of a ray leaving hit point x (from primHitPoint, surface parameters ab) of primitive p, on
-/// the side of unit normal n: moved off the plane by primOffsetDistance, then by offsetRayOrigin.
-VKP_FN vec3 spawnRayOrigin(GpuPrim p, vec2 ab, vec3 x, vec3 n) {
-    return offsetRayOrigin(x + primOffsetDistance(p, ab, n) * n, n);
+/// the side of unit normal n: moved off the plane by primOffsetDistance, then by offsetRayOrigin
+/// (scale: the scene's rayOffsetScale, shared/ray_offset.h).
+VKP_FN vec3 spawnRayOrigin(GpuPrim p, vec2 ab, vec3 x, vec3 n, float scale) {
+    return offsetRayOrigin(x + primOffsetDistance(p, ab, n) * n, n, scale);
 }
 
 /// spawnRayOrigin with `extra` world units (>= 0) added to primOffsetDistance: the rounding an
 /// instance's transform adds (shared/instance.h instanceOffsetDistance). extra = 0 gives
 /// spawnRayOrigin's point bit for bit.
-VKP_FN vec3 spawnRayOriginExtra(GpuPrim p, vec2 ab, vec3 x, vec3 n, float extra) {
-    return offsetRayOrigin(x + (primOffsetDistance(p, ab, n) + extra) * n, n);
+VKP_FN vec3 spawnRayOriginExtra(GpuPrim p, vec2 ab, vec3 x, vec3 n, float extra, float scale) {
+    return offsetRayOrigin(x + (primOffsetDistance(p, ab, n) + extra) * n, n, scale);
 }
 
 /// True when point x lies in the plane of flat primitive p, within the rounding band that

@@ -88,6 +88,28 @@ TEST_F(CliRender, InfoNamesCountsBvhAndVariant) {
     EXPECT_NE(r.out.find("materials:lambertian+dielectric+emission"), std::string::npos) << r.out;
 }
 
+// `vkpath info` makes the render's own check against the chosen device's limits (fitProblem,
+// planBands): a small image fits in one band, a 16384 x 16384 one needs several bands of rows on
+// lavapipe (or is refused with the one line a render would print), a --device that names none fails.
+TEST_F(CliRender, InfoChecksTheRenderAgainstTheDevice) {
+    VKP_REQUIRE_DEVICE(dev);
+    ProcessResult r = run({"info", scene("cornell-book3.json"), "--validate"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("device       " + dev.info().name + ": fits (1 band of rows"), std::string::npos) << r.out;
+    r = run({"info", scene("cornell-book3.json"), "--width", "16384", "--height", "16384"});
+    if (r.exitCode == 0) {
+        EXPECT_NE(r.out.find(": fits ("), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("(1 band of rows"), std::string::npos) << "16384^2 pixels cannot be one band: " << r.out;
+    } else {
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.out.find("does not fit"), std::string::npos) << r.out;
+    }
+    r = run({"info", scene("cornell-book3.json"), "--device", "no-such-gpu-name"});
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+}
+
 TEST_F(CliRender, DevicesAndBadDeviceSelection) {
     VKP_REQUIRE_DEVICE(dev);
     ProcessResult r = run({"devices", "--validate"});

@@ -241,10 +241,10 @@ TEST(BvhIntersect, SphereAccurateForLargeRadius) {
             const vec3 x = c + r * glm::normalize(o - c);
             const vec3 out = glm::normalize(n + rng.direction() * 0.99f);
             if (glm::dot(out, n) > 0.0f)
-                selfHits += vkp::gpu::intersectSphere(c, r, vkp::gpu::offsetRayOrigin(x, n), out, 0.0f, VKP_FAR) < VKP_FAR;
+                selfHits += vkp::gpu::intersectSphere(c, r, vkp::gpu::offsetRayOrigin(x, n, 1.0f), out, 0.0f, VKP_FAR) < VKP_FAR;
             const vec3 in = glm::normalize(-n + rng.direction() * 0.99f);
             if (glm::dot(in, n) < 0.0f) {
-                const float t = vkp::gpu::intersectSphere(c, r, vkp::gpu::offsetRayOrigin(x, -n), in, 0.0f, VKP_FAR);
+                const float t = vkp::gpu::intersectSphere(c, r, vkp::gpu::offsetRayOrigin(x, -n, 1.0f), in, 0.0f, VKP_FAR);
                 const double chord = -2.0 * double(r) * glm::dot(dvec3(in), dvec3(n));
                 inwardMisses += !(std::abs(t - chord) < 1e-3 * chord + 4.0 * ulpOf(r));
             }

@@ -242,7 +242,7 @@ TEST(TwoLevelBvh, WorldHitGeometryMatchesTheFlattenedTriangleAndRaysLeaveIt) {
             for (int side = 0; side < 2; ++side) {
                 const glm::vec3 ns = side == 0 ? n : -n;
                 const float extra = gpu::instanceOffsetDistance(g, pObj, h.ab, x, n);
-                const glm::vec3 xo = gpu::spawnRayOriginExtra(p, ab, x, ns, extra);
+                const glm::vec3 xo = gpu::spawnRayOriginExtra(p, ab, x, ns, extra, 1.0f);
                 for (int j = 0; j < 4; ++j) {
                     glm::vec3 d = rng.direction();
                     if (glm::dot(d, ns) < 0.0f) d = -d;

@@ -118,6 +118,14 @@ TEST(CliArgs, UsageErrors) {
     EXPECT_EQ(errorOf({"render", "s.json", "--spp", "1"}), "");
 }
 
+// The image size decides whether a render fits the device, which `vkpath info` checks.
+TEST(CliArgs, InfoTakesTheImageSize) {
+    const CliArgs a = parse({"info", "s.json", "--width", "4096", "--height", "300"});
+    EXPECT_EQ(a.width, 4096u);
+    EXPECT_EQ(a.height, 300u);
+    EXPECT_NE(errorOf({"info", "s.json", "--width", "16385"}).find("--width"), std::string::npos);
+}
+
 TEST(CliArgs, InstancingAutoByDefaultFlattenOnRequestAlsoForInfo) {
     EXPECT_TRUE(parse({"render", "s.glb"}).instancing);
     EXPECT_FALSE(parse({"render", "s.glb", "--instancing", "flatten"}).instancing);
