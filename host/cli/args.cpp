@@ -25,6 +25,26 @@ double parseDouble(const std::string& flag, const std::string& v, double min, do
         usage(flag + " wants a number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" + v + "'");
     return x;
 }
+
+/// "R,G,B" or one value V for grey: linear radiance, each finite and >= 0.
+glm::vec3 parseColour(const std::string& flag, const std::string& v) {
+    std::vector<float> c;
+    std::size_t start = 0;
+    while (c.size() < 4) {
+        const std::size_t comma = v.find(',', start);
+        const std::string part = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        double x = 0;
+        auto [p, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
+        if (part.empty() || ec != std::errc() || p != part.data() + part.size() || !std::isfinite(x) || x < 0 || x > 1e30)
+            usage(flag + " wants R,G,B (or one value for grey): linear radiance, each finite and >= 0, got '" + v + "'");
+        c.push_back(float(x));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (c.size() == 1) return glm::vec3(c[0]);
+    if (c.size() != 3) usage(flag + " wants R,G,B (or one value for grey), got '" + v + "'");
+    return glm::vec3(c[0], c[1], c[2]);
+}
 }  // namespace
 
 const char* usageText() {
@@ -57,6 +77,11 @@ render options:
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
   --gltf-scene N          .gltf/.glb: render scene N of the file (default: the file's default scene)
   --camera N              .gltf/.glb: view through camera N of the file (default: its first perspective camera)
+  --background R,G,B      light for a scene that has none: escaping rays see this linear radiance (one
+                          value: grey); replaces the scene's environment
+  --environment FILE      light from an equirectangular map (.hdr, .exr, .pfm); replaces the scene's
+  --environment-strength S, --environment-rotate DEG
+                          scale the map's radiance, turn it about +y (that map, or the scene's own)
   --instancing M          glTF: auto (default: a mesh several nodes use, or of a file a JSON scene includes
                           several times, is stored once, two-level BVH) | flatten (every node's triangles
                           placed in the world); also for 'vkpath info'
@@ -118,6 +143,12 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else usage("--instancing must be auto or flatten, got '" + v + "'");
             continue;
         }
+        // Light for scenes that bring none: they change the variant and the device data, which
+        // `vkpath info` shows, so both commands take them.
+        if (f == "--background") { a.background = parseColour(f, value(f)); continue; }
+        if (f == "--environment") { a.environment = fileValue(f); continue; }
+        if (f == "--environment-strength") { a.environmentStrength = float(parseDouble(f, value(f), 0.0, 1e30)); continue; }
+        if (f == "--environment-rotate") { a.environmentRotate = float(parseDouble(f, value(f), -1e6, 1e6)); continue; }
         // The image size decides whether a render fits the device: `vkpath info` checks it too.
         if (f == "--width") { a.width = parseUint(f, value(f), 1, 16384); continue; }
         if (f == "--height") { a.height = parseUint(f, value(f), 1, 16384); continue; }
@@ -188,6 +219,9 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
     if (renderOnly && a.command != Command::Render) usage("render options are only valid with 'vkpath render'");
     if (!a.errorLog.empty() && a.reference.empty()) usage("--error-log needs --reference");
+    if (a.background && !a.environment.empty()) usage("--background and --environment exclude each other (one environment light)");
+    if (a.background && (a.environmentStrength || a.environmentRotate))
+        usage("--environment-strength and --environment-rotate apply to a map, not to --background");
     if (solidAngleMinGiven && a.render.lightSampling != LightSampling::Auto)
         usage("--solid-angle-min applies to --light-sampling auto only");
     return a;

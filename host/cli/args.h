@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/image_io.h"
 #include "render/render_options.h"
 #include "render/session.h"
@@ -30,6 +32,13 @@ struct CliArgs {
     std::optional<std::uint32_t> gltfScene;  ///< --gltf-scene N: scene of a .gltf/.glb (default: the file's)
     std::optional<std::uint32_t> camera;     ///< --camera N: camera of a .gltf/.glb (default: its first perspective one)
     bool instancing = true;                  ///< --instancing auto (true) | flatten (false): glTF shared meshes
+    /// Light for a scene that brings none (or replaces the scene's): --background R,G,B (linear
+    /// radiance of escaping rays; replaces the scene's environment), --environment FILE (an
+    /// equirectangular .hdr/.exr/.pfm map), --environment-strength S and --environment-rotate DEG
+    /// (for that map, or the scene's own when --environment is not given).
+    std::optional<glm::vec3> background;
+    std::filesystem::path environment;
+    std::optional<float> environmentStrength, environmentRotate;
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

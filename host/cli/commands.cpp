@@ -32,6 +32,51 @@ using Clock = std::chrono::steady_clock;
 /// The job of `vkpath render` / `vkpath info`: the scene by its extension (.gltf / .glb: glTF,
 /// anything else: JSON) with the command line's overrides, and its options as parsed. Prints the
 /// scene's warnings on stderr.
+/// --background, --environment, --environment-strength, --environment-rotate applied to the loaded
+/// scene (host/cli/args.h). Throws InputError with one line naming the option.
+void applyLight(const CliArgs& a, Scene& s) {
+    if (a.background) {
+        s.render.background = *a.background;
+        s.environment = Environment{};  // the constant background is now the environment
+        return;
+    }
+    if (!a.environment.empty()) {
+        try {
+            s.environment = readEnvironmentMap(a.environment, a.environmentStrength.value_or(1.0f), a.environmentRotate.value_or(0.0f));
+        } catch (const InputError& e) {
+            throw InputError(std::string("--environment: ") + e.what());
+        }
+        return;
+    }
+    if (!a.environmentStrength && !a.environmentRotate) return;
+    if (!s.environment.hasMap())
+        throw InputError(std::string("usage: ") + (a.environmentStrength ? "--environment-strength" : "--environment-rotate") +
+                         " needs an environment map: " + a.scene.string() + " has none (add --environment FILE)");
+    if (a.environmentRotate) s.environment.rotateY = *a.environmentRotate;
+    if (a.environmentStrength) {  // the map again, at the new strength
+        try {
+            s.environment = readEnvironmentMap(s.environment.file, *a.environmentStrength, s.environment.rotateY);
+        } catch (const InputError& e) {
+            throw InputError(s.environment.file.string() + ": " + e.what());
+        }
+    }
+}
+
+/// The scene has some light: an emitting surface (placed or instanced) or environment light that
+/// is not black.
+bool hasLight(const Scene& s) {
+    auto emits = [&](const Shape& sh) { return sh.material < s.materials.size() && s.materials[sh.material].emits(); };
+    for (const Shape& sh : s.shapes)
+        if (emits(sh)) return true;
+    for (const InstancedMesh& m : s.meshes)
+        for (const Shape& sh : m.shapes)
+            if (emits(sh)) return true;
+    if (s.render.background != glm::vec3(0.0f)) return true;
+    for (float x : s.environment.image.rgb)
+        if (x > 0.0f) return true;
+    return false;
+}
+
 RenderJob makeJob(const CliArgs& a) {
     std::string ext = a.scene.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -54,6 +99,12 @@ RenderJob makeJob(const CliArgs& a) {
         s = loadSceneJson(a.scene, o);
     }
     for (const std::string& w : s.warnings) std::fprintf(stderr, "vkpath: warning: %s\n", w.c_str());
+    applyLight(a, s);
+    if (!hasLight(s))
+        std::fprintf(stderr,
+                     "vkpath: warning: %s has no light (no emitting surface, no environment, a black background): the "
+                     "image will be black; add --background R,G,B or --environment FILE\n",
+                     a.scene.string().c_str());
     if (a.spp) s.render.spp = *a.spp;
     if (a.width) s.camera.width = *a.width;
     if (a.height) s.camera.height = *a.height;

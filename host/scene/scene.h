@@ -171,6 +171,13 @@ struct Environment {
     bool hasMap() const { return !image.empty(); }
 };
 
+/// An equirectangular radiance map (.hdr, .exr or .pfm: linear; row 0 = +y) read from file, scaled
+/// by strength (finite, >= 0) and turned by rotateY degrees about +y. Throws InputError with one
+/// line that does not name the file (the caller says where it was named) when it cannot be read, is
+/// display-encoded (PNG), has no pixels, holds a negative, NaN or infinite value, or overflows
+/// when scaled.
+Environment readEnvironmentMap(const std::filesystem::path& file, float strength, float rotateY);
+
 /// A mesh stored once in object space and drawn by several instances: a glTF mesh that two or more
 /// nodes of the scene use, or of a file a JSON scene includes several times (and that does not emit:
 /// lights are sampled in world space, so emissive meshes are always flattened). The loaders make

@@ -118,6 +118,26 @@ TEST(CliArgs, UsageErrors) {
     EXPECT_EQ(errorOf({"render", "s.json", "--spp", "1"}), "");
 }
 
+// Light for scenes that bring none (render and info: it changes the variant).
+TEST(CliArgs, BackgroundAndEnvironment) {
+    CliArgs a = parse({"render", "s.gltf", "--background", "0.25,0.5,1"});
+    ASSERT_TRUE(a.background);
+    EXPECT_EQ(*a.background, glm::vec3(0.25f, 0.5f, 1.0f));
+    EXPECT_EQ(*parse({"info", "s.gltf", "--background", "2"}).background, glm::vec3(2.0f));
+    a = parse({"render", "s.gltf", "--environment", "sky.hdr", "--environment-strength", "3", "--environment-rotate", "-90"});
+    EXPECT_EQ(a.environment, "sky.hdr");
+    EXPECT_EQ(a.environmentStrength, 3.0f);
+    EXPECT_EQ(a.environmentRotate, -90.0f);
+    for (const char* bad : {"1,2", "1,2,3,4", "-1", "1,,2", "nan", "1,2,x", ""})
+        EXPECT_NE(errorOf({"render", "s.gltf", "--background", bad}).find("--background wants R,G,B"), std::string::npos) << bad;
+    EXPECT_NE(errorOf({"render", "s.gltf", "--background", "1", "--environment", "a.hdr"}).find("exclude each other"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.gltf", "--background", "1", "--environment-strength", "2"}).find("not to --background"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.gltf", "--environment-strength", "-1"}).find("--environment-strength"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.gltf", "--environment"}).find("--environment"), std::string::npos);
+}
+
 // The image size decides whether a render fits the device, which `vkpath info` checks.
 TEST(CliArgs, InfoTakesTheImageSize) {
     const CliArgs a = parse({"info", "s.json", "--width", "4096", "--height", "300"});

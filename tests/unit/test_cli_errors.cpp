@@ -64,12 +64,54 @@ TEST_F(CliErrors, MissingSceneFileUsageAndOutputErrors) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
 }
 
+// The light options of the command line: a map that cannot be used, a strength or rotation without
+// a map, are one line naming the option, exit 1, no output. A scene without light is one warning
+// line that says what to add (`info` loads the scene as `render` does).
+TEST_F(CliErrors, LightOptionsAndTheBlackSceneWarning) {
+    const std::string scene = (scenesDir() / "gltf" / "no-camera.gltf").string();
+    std::filesystem::remove(dir / "out.png");
+    write("display.png", "not even a png");
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"--environment", "no-such-map.hdr"}, {"--environment", "display.png"},
+          {"--environment-strength", "2"}, {"--environment-rotate", "30"}}) {
+        std::vector<std::string> args = {"render", scene, "-o", "out.png"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const ProcessResult r = run(args);
+        EXPECT_EQ(r.exitCode, 1) << extra[0] << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(extra[0]), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+    }
+    ProcessResult r = run({"info", scene});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("warning: " + scene + " has no light"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("add --background R,G,B or --environment FILE"), std::string::npos) << r.err;
+    r = run({"info", scene, "--background", "0.5"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("env:constant"), std::string::npos) << r.out;
+    r = run({"info", scene, "--environment", (scenesDir() / "env" / "sky.hdr").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("env:map"), std::string::npos) << r.out;
+    // A scene with its own light has no warning.
+    r = run({"info", (scenesDir() / "cornell-book3.json").string()});
+    EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
+}
+
 TEST_F(CliErrors, NoVulkanDriverIsExitCode2WithAFix) {
     // The loader finds no driver when pointed at a manifest that does not exist.
     const ProcessResult r = run({"devices"}, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json");
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("apt-get install mesa-vulkan-drivers"), std::string::npos) << r.err;
+    // `info` still describes the scene, and says there is no device to check the render against.
+    const ProcessResult i = run({"info", (scenesDir() / "cornell-book3.json").string()},
+                                "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json");
+    EXPECT_EQ(i.exitCode, 0) << i.err;
+    EXPECT_NE(i.out.find("variant      "), std::string::npos) << i.out;
+    EXPECT_NE(i.out.find("device       none"), std::string::npos) << i.out;
 }
 
 TEST_F(CliErrors, HelpAndVersion) {

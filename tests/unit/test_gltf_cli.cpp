@@ -33,9 +33,11 @@ struct GltfCli : ::testing::Test {
 };
 
 TEST_F(GltfCli, InfoPrintsTheWarningsOfAGltfFile) {
+    // The file's one warning, then (its only light is a KHR_lights_punctual lamp) the black-scene one.
     const ProcessResult r = run({"info", (scenesDir() / "gltf" / "extensions.gltf").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(lineCount(r.err), 2) << r.err;
+    EXPECT_NE(r.err.find("has no light"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.rfind("vkpath: warning: ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find("extensions.gltf: extensionsUsed: extension KHR_lights_punctual is not supported"), std::string::npos)
         << r.err;
@@ -43,7 +45,8 @@ TEST_F(GltfCli, InfoPrintsTheWarningsOfAGltfFile) {
 }
 
 TEST_F(GltfCli, InfoOfAGlbAndItsOtherScene) {
-    const ProcessResult r = run({"info", (scenesDir() / "gltf" / "hierarchy.gltf").string(), "--gltf-scene", "0"});
+    const ProcessResult r = run({"info", (scenesDir() / "gltf" / "hierarchy.gltf").string(), "--gltf-scene", "0",
+                                 "--background", "1"});  // it has no light of its own
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_NE(r.out.find("1 triangles"), std::string::npos) << r.out;
