@@ -96,6 +96,8 @@ RenderJob makeJob(const CliArgs& a) {
     } else {
         SceneJsonOptions o;
         o.instancing = a.instancing;  // included glTF files
+        o.width = a.width;            // a scene without "camera" is framed for this size
+        o.height = a.height;
         s = loadSceneJson(a.scene, o);
     }
     for (const std::string& w : s.warnings) std::fprintf(stderr, "vkpath: warning: %s\n", w.c_str());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/errors.h"
 #include "scene/gltf_parts.h"
 #include "scene/scene_json_parts.h"
 
@@ -78,30 +79,13 @@ Camera cameraFromGltf(const Document& doc, std::size_t c, const glm::dmat4& worl
 
 Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, const GltfOptions& options,
                      glm::dvec3& position) {
-    Camera cam;
-    imageSize(1.0, options, cam);
-    glm::dvec3 centre(0.0);
-    double radius = 1.0;
-    if (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) {
-        centre = 0.5 * (lo + hi);
-        radius = std::max(0.5 * glm::length(hi - lo), 1e-3 * std::max(1.0, glm::length(centre)));
-    }
-    constexpr double kVfovDeg = 40.0;
-    const double vHalf = kVfovDeg * std::numbers::pi / 360.0;
-    const double hHalf = std::atan(std::tan(vHalf) * double(cam.width) / double(cam.height));
-    // The bounding sphere of the box fits inside the narrower of the two half angles, with 5% to spare.
-    const double dist = 1.05 * radius / std::sin(std::min(vHalf, hHalf));
-    position = centre + glm::dvec3(0.0, 0.0, dist);  // glTF assets face +Z
-    cam.lookfrom = glm::vec3(0.0f);
-    cam.lookat = glm::vec3(centre - position);
-    cam.vup = glm::vec3(0.0f, 1.0f, 0.0f);
-    cam.vfov = float(kVfovDeg);
-    cam.focusDist = float(dist);
-    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z) ||
-        !std::isfinite(cam.focusDist)) {
+    Camera size;
+    imageSize(1.0, options, size);
+    try {
+        return vkp::framingCamera(file, lo, hi, size.width, size.height, position);
+    } catch (const InputError&) {
         fail(file, "cameras", "the file has no camera and its scene is too large to frame in 32-bit floats");
     }
-    return cam;
 }
 
 }  // namespace vkp::gltf

@@ -341,8 +341,17 @@ void Object::finish() const {
     for (const auto& [k, unused] : v_.json().items()) {
         (void)unused;
         if (std::find(known_.begin(), known_.end(), k) == known_.end()) {
+            // A misspelling of an optional key (as required() names one of a required key).
+            std::string hint;
+            for (const std::string& known : known_) {
+                const std::size_t d = editDistance(k, known);
+                if (d <= 2 && 2 * d < known.size()) {
+                    hint = "; is it a misspelling of \"" + known + "\"?";
+                    break;
+                }
+            }
             throw InputError(
-                formatError(v_.file(), v_.child(k), "unknown key (allowed here: " + joinKeys(known_) + ")"));
+                formatError(v_.file(), v_.child(k), "unknown key (allowed here: " + joinKeys(known_) + ")" + hint));
         }
     }
 }

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -230,6 +232,9 @@ struct SceneJsonOptions {
     /// object space (Scene::meshes) with one Scene::instances entry per placement. false (--instancing
     /// flatten, the library's default): every placement's triangles are in Scene::shapes.
     bool instancing = false;
+    /// The image size a scene without "camera" is framed for (its framing camera, as a glTF file
+    /// without one gets): one of them alone makes a square; neither: kGltfDefaultImageSide square.
+    std::optional<std::uint32_t> width, height;
 };
 
 /// Load a scene in vkpath's JSON format (scenes/README.md). Throws InputError with one line
@@ -276,6 +281,18 @@ inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(
 /// sets it in the new frame). Throws InputError "<file>: <why>: shape i is outside the range of
 /// 32-bit floats relative to the camera" if a moved position overflows.
 void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why);
+
+/// The box (in the scene's frame, double) of every shape, placed and instanced; lo > hi when there
+/// is none.
+std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene);
+
+/// A camera for a scene that has none (glTF files without a camera, JSON scenes without "camera"):
+/// vfov 40 degrees, looking along -z at the centre of [lo, hi] from where the box's bounding sphere
+/// fits the narrower half angle of a width x height image with 5% to spare. The camera is expressed
+/// relative to its own position (lookfrom = 0), which is returned as position, in the frame of lo
+/// and hi. Throws InputError naming file when that position does not fit 32-bit floats.
+Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, std::uint32_t width, std::uint32_t height,
+                     glm::dvec3& position);
 
 /// Surface area in world units^2: 4 pi r^2 (sphere), |u x v| (quad), |e1 x e2| / 2 (triangle).
 float shapeArea(const Shape& s);

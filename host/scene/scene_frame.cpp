@@ -1,5 +1,8 @@
 // Camera-relative space (docs/design.md "Camera-relative space"): moving a loaded scene's frame.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "core/errors.h"
 #include "scene/scene.h"
@@ -25,6 +28,68 @@ void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why) {
     }
     for (MeshInstance& mi : scene.instances) mi.objectToWorld[3] -= glm::dvec4(by, 0.0);
     scene.origin += by;
+}
+
+std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene) {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    auto grow = [&](glm::dvec3 p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    };
+    auto growShape = [&](const Shape& s, const glm::dmat4& m) {
+        auto at = [&](glm::dvec3 p) { grow(glm::dvec3(m * glm::dvec4(p, 1.0))); };
+        const glm::dvec3 p0(s.p0), p1(s.p1), p2(s.p2);
+        switch (s.type) {
+            case ShapeType::Sphere:
+                at(p0 - glm::dvec3(s.radius));
+                at(p0 + glm::dvec3(s.radius));
+                break;
+            case ShapeType::Quad:  // p1, p2: the edges u, v
+                at(p0);
+                at(p0 + p1);
+                at(p0 + p2);
+                at(p0 + p1 + p2);
+                break;
+            case ShapeType::Triangle:
+                at(p0);
+                at(p1);
+                at(p2);
+                break;
+        }
+    };
+    for (const Shape& s : scene.shapes) growShape(s, glm::dmat4(1.0));
+    for (const MeshInstance& mi : scene.instances)
+        for (const Shape& s : scene.meshes.at(mi.mesh).shapes) growShape(s, mi.objectToWorld);
+    return {lo, hi};
+}
+
+Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, std::uint32_t width, std::uint32_t height,
+                     glm::dvec3& position) {
+    Camera cam;
+    cam.width = width;
+    cam.height = height;
+    glm::dvec3 centre(0.0);
+    double radius = 1.0;
+    if (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) {
+        centre = 0.5 * (lo + hi);
+        radius = std::max(0.5 * glm::length(hi - lo), 1e-3 * std::max(1.0, glm::length(centre)));
+    }
+    constexpr double kVfovDeg = 40.0;
+    const double vHalf = kVfovDeg * std::numbers::pi / 360.0;
+    const double hHalf = std::atan(std::tan(vHalf) * double(cam.width) / double(cam.height));
+    // The bounding sphere of the box fits inside the narrower of the two half angles, with 5% to spare.
+    const double dist = 1.05 * radius / std::sin(std::min(vHalf, hHalf));
+    position = centre + glm::dvec3(0.0, 0.0, dist);  // looking along -z, as glTF assets expect
+    cam.lookfrom = glm::vec3(0.0f);
+    cam.lookat = glm::vec3(centre - position);
+    cam.vup = glm::vec3(0.0f, 1.0f, 0.0f);
+    cam.vfov = float(kVfovDeg);
+    cam.focusDist = float(dist);
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z) ||
+        !std::isfinite(cam.focusDist)) {
+        throw InputError(file + ": the scene has no camera and is too large to frame in 32-bit floats");
+    }
+    return cam;
 }
 
 }  // namespace vkp

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "scene/gltf.h"
 #include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_json_parts.h"
@@ -112,27 +113,52 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     json::Object top = json::Value(doc, "", name).object();
     // Every top-level key is known up front, so a misplaced key is reported before anything else.
     const auto description = top.optional("description");
-    const json::Value camera = top.required("camera");
+    const auto camera = top.optional("camera");
     const auto render = top.optional("render");
-    const json::Value materials = top.required("materials");
+    const auto materials = top.optional("materials");  // optional when no object names one
     const json::Value objects = top.required("objects");
     const auto environment = top.optional("environment");
     top.finish();
 
-    Scene scene;
-    scene.path = file;
-    if (description) description->string();
-    // The camera first: its position is the origin of the frame every coordinate is expressed in.
-    scene.camera = scenejson::readCamera(camera, scene.origin);
-    if (render) scene.render = scenejson::readRender(*render);
-    std::map<std::string, std::uint32_t> index;
-    scenejson::readMaterials(materials, scene, index);
-    scenejson::readObjects(objects, index, options.instancing, scene);
-    if (environment) {
-        if (scene.render.background != glm::vec3(0.0f))
-            environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
-        scene.environment = scenejson::readEnvironment(*environment, file);
+    // Everything but the camera, in the frame whose origin is `origin` (file coordinates).
+    auto read = [&](glm::dvec3 origin) {
+        Scene scene;
+        scene.path = file;
+        scene.origin = origin;
+        if (description) description->string();
+        if (render) scene.render = scenejson::readRender(*render);
+        std::map<std::string, std::uint32_t> index;
+        if (materials) scenejson::readMaterials(*materials, scene, index);
+        scenejson::readObjects(objects, index, options.instancing, scene);
+        if (environment) {
+            if (scene.render.background != glm::vec3(0.0f))
+                environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
+            scene.environment = scenejson::readEnvironment(*environment, file);
+        }
+        return scene;
+    };
+    if (camera) {
+        // The camera first: its position is the origin of the frame every coordinate is expressed in.
+        glm::dvec3 origin(0.0);
+        const Camera cam = scenejson::readCamera(*camera, origin);
+        Scene scene = read(origin);
+        scene.camera = cam;
+        return scene;
     }
+    // No camera: the framing camera of a glTF file without one (docs/gltf.md), square unless the
+    // options give a size. The scene is read twice, the second time relative to that camera, so
+    // that every coordinate is still rounded to float once, relative to the camera.
+    const Scene firstPass = read(glm::dvec3(0.0));
+    const auto [lo, hi] = sceneBounds(firstPass);
+    const std::uint32_t width = options.width.value_or(options.height.value_or(kGltfDefaultImageSide));
+    const std::uint32_t height = options.height.value_or(width);
+    // Framed about the box's centre c (the scene's size decides the framing, not its distance
+    // from the file's origin), then placed at c + that camera's position.
+    const glm::dvec3 c = (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+    glm::dvec3 position;
+    const Camera cam = framingCamera(name, lo - c, hi - c, width, height, position);
+    Scene scene = read(c + position);
+    scene.camera = cam;
     return scene;
 }
 

@@ -139,28 +139,14 @@ struct LayoutBench {
     }
 };
 
-/// The box around every shape of the scene.
-std::pair<glm::vec3, glm::vec3> sceneBounds(const Scene& scene) {
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    auto add = [&](const glm::vec3& p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    };
-    for (const Shape& s : scene.shapes) {
-        if (s.type == ShapeType::Sphere) {
-            add(s.p0 - glm::vec3(s.radius));
-            add(s.p0 + glm::vec3(s.radius));
-        } else if (s.type == ShapeType::Quad) {
-            add(s.p0), add(s.p0 + s.p1), add(s.p0 + s.p2), add(s.p0 + s.p1 + s.p2);
-        } else {
-            add(s.p0), add(s.p1), add(s.p2);
-        }
-    }
-    return {lo, hi};
+/// The box around every shape of the scene (scene/scene.h sceneBounds), in float.
+std::pair<glm::vec3, glm::vec3> floatBounds(const Scene& scene) {
+    const auto [lo, hi] = floatBounds(scene);
+    return {glm::vec3(lo), glm::vec3(hi)};
 }
 
 std::vector<Ray> incoherentRays(const Scene& scene, std::size_t n, std::uint32_t seed) {
-    const auto [lo, hi] = sceneBounds(scene);
+    const auto [lo, hi] = floatBounds(scene);
     const glm::vec3 pad = 0.01f * (hi - lo);
     Rng rng(seed);
     std::vector<Ray> rays;
@@ -278,7 +264,7 @@ TEST(BenchBvhLayout, CornellClassic) {
 TEST(BenchBvhLayout, CornellWithMillionTriangleMesh) {
     VKP_REQUIRE_DEVICE(dev);
     Scene scene = cornellClassic();
-    const auto [lo, hi] = sceneBounds(scene);
+    const auto [lo, hi] = floatBounds(scene);
     const glm::vec3 center = 0.5f * (lo + hi);
     const float radius = 0.2f * glm::length(hi - lo);
     for (Shape s : sphereMesh(708, 708, radius)) {

@@ -95,6 +95,13 @@ TEST_F(CliErrors, LightOptionsAndTheBlackSceneWarning) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("env:map"), std::string::npos) << r.out;
+    // A JSON scene of nothing but a glTF file: no camera, no materials (the framing camera).
+    write("wrap.json", R"({"objects": [{"type": "gltf", "file": ")" + scene + R"("}]})");
+    r = run({"info", "wrap.json", "--background", "1"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_NE(r.out.find("image        512x512"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("12 (0 spheres, 0 quads, 12 triangles)"), std::string::npos) << r.out;
     // A scene with its own light has no warning.
     r = run({"info", (scenesDir() / "cornell-book3.json").string()});
     EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;

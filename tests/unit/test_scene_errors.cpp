@@ -72,8 +72,9 @@ std::vector<Case> cases() {
         {"too_deep", std::string(300, '[') + std::string(300, ']'), "/0/0/0/0", "nested deeper than 256 levels"},
         {"unknown_top_key", scene(kCamera, kMaterials, "[]", ",\"lights\":[]"), "/lights", "unknown key"},
         {"description_type", scene(kCamera, kMaterials, "[]", ",\"description\":7"), "/description", "must be a string"},
-        {"missing_camera", R"({"materials":{},"objects":[]})", "/camera", "missing required key"},
-        {"misspelt_key", R"({"camra":{},"materials":{},"objects":[]})", "/camera", "\"camra\" a misspelling"},
+        {"material_without_materials", R"({"objects":[{"type":"sphere","center":[0,0,0],"radius":1,"material":"m"}]})",
+         "/objects/0/material", "unknown material \"m\" (not a key of /materials)"},
+        {"misspelt_key", R"({"camra":{},"materials":{},"objects":[]})", "/camra", "is it a misspelling of \"camera\"?"},
         {"missing_objects", R"({"camera":)" + kCamera + R"(,"materials":{}})", "/objects", "missing required key"},
         // camera
         {"camera_type", withCamera("[]"), "/camera", "must be an object"},

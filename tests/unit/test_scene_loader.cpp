@@ -1,6 +1,10 @@
 // The JSON scene loader on good input: the shipped scenes (counts, the books' values, outward box
 // faces) and the conventions of scenes/README.md (transforms, lights, defaults).
+#include <numbers>
+
 #include <gtest/gtest.h>
+
+#include "scene/gltf.h"
 
 #include "file_frame.h"
 
@@ -237,6 +241,39 @@ TEST(SceneLoader, EmptyObjectListIsAScene) {
     const Scene s = parse("{}", "[]");
     EXPECT_TRUE(s.shapes.empty());
     EXPECT_TRUE(s.lights.empty());
+}
+
+// "camera" and "materials" are optional (a scene file may hold just objects, lit by
+// --background or --environment): the framing camera of a glTF file without one, and the scene
+// read relative to it in double, so a scene 1e7 from the origin keeps its floats.
+TEST(SceneLoader, WithoutCameraAndMaterialsTheSceneIsFramed) {
+    const Scene empty = vkp::parseSceneJson(R"({"objects": []})", "inline.json");
+    EXPECT_TRUE(empty.shapes.empty());
+    EXPECT_EQ(empty.camera.width, vkp::kGltfDefaultImageSide);
+    EXPECT_EQ(empty.camera.height, vkp::kGltfDefaultImageSide);
+    for (double at : {0.0, 1e7}) {
+        const std::string text = R"({"materials": {"m": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]}}, "objects": [
+            {"type": "sphere", "center": [)" + std::to_string(at) + R"(, 2, 3], "radius": 1, "material": "m"}]})";
+        const Scene s = vkp::parseSceneJson(text, "inline.json");
+        ASSERT_EQ(s.shapes.size(), 1u);
+        EXPECT_FLOAT_EQ(s.camera.vfov, 40.0f);
+        EXPECT_EQ(s.camera.lookfrom, glm::vec3(0.0f));
+        // Looking along -z at the sphere's centre from where its bounding sphere (radius sqrt(3))
+        // fits 40 degrees with 5% to spare.
+        const double dist = 1.05 * std::sqrt(3.0) / std::sin(20.0 * std::numbers::pi / 180.0);
+        EXPECT_NEAR(s.origin.x, at, 1e-9 * std::max(1.0, at));
+        EXPECT_NEAR(s.origin.y, 2.0, 1e-9);
+        EXPECT_NEAR(s.origin.z, 3.0 + dist, 1e-9);
+        EXPECT_EQ(s.shapes[0].p0, glm::vec3(0.0f, 0.0f, float(-dist))) << "at " << at;
+        EXPECT_EQ(glm::normalize(s.camera.lookat), glm::vec3(0.0f, 0.0f, -1.0f));
+        vkp::SceneJsonOptions wide;
+        wide.width = 800;
+        wide.height = 200;
+        const Scene w = vkp::parseSceneJson(text, "inline.json", wide);
+        EXPECT_EQ(w.camera.width, 800u);
+        EXPECT_EQ(w.camera.height, 200u);
+        EXPECT_NEAR(w.origin.z, 3.0 + dist, 1e-9) << "vfov is the narrower angle here";
+    }
 }
 
 TEST(SceneLoader, MaterialsInFileOrderWithAllFields) {
