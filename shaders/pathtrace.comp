@@ -103,23 +103,16 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     Bsdf b = makeBsdf(h.m, h.ns, h.nShade, s.d, h.frontFace);
     float uStrategy = bsdfIsDelta(b) ? 0.0f : sampleNext(s.smp);  // picks a light, or the mixture's half
     vec3 uBsdf = bsdfNumbers(b, s.smp);
-    // The BSDF's own sample first (it needs no origin; the mixture samples after next-event
-    // estimation, from the origin), so that the ray origin is computed once, on the side the new
-    // ray leaves: a refracted ray on the other side. Next-event estimation only happens at
-    // non-delta BSDFs, whose samples leave on the side of h.ns.
-    bool mixture = mixtureOn(b);
-    vec3 dir = vec3(0.0f, 0.0f, 1.0f);
-    float pdf = 0.0f;
-    vec3 weight = vec3(0.0f);
-    bool sampled = !mixture && sampleBsdf(b, uBsdf, dir, pdf, weight);
-    bool refracted = HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f);
-    vec3 xo = spawnFrom(h, refracted ? -h.ns : h.ns);
+    vec3 xo = spawnFrom(h, h.ns);
     bool nee = !bsdfIsDelta(b) && neeOn();
     if (nee) s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, sampleNext2(s.smp), rays, passes);
-    if (mixture) {
+    vec3 dir;
+    if (mixtureOn(b)) {
         if (!sampleMixture(b, xo, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
     } else {
-        if (!sampled) return true;
+        float pdf;
+        vec3 weight;
+        if (!sampleBsdf(b, uBsdf, dir, pdf, weight)) return true;
         s.throughput *= weight;
         if (nee) {
             // `light` ignores the light this sample finds (already counted), `mis` weights it.
@@ -129,7 +122,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             s.prevBsdfPdf = pdf;
         }
     }
-    s.o = xo;
+    // A refracted ray leaves on the other side.
+    s.o = (HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f)) ? spawnFrom(h, -h.ns) : xo;
     s.d = dir;
 
     // Russian roulette (unbiased): continue with probability q, divide by q.
