@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
-# With --bench also python3-numpy and python3-matplotlib (for tools/bench.sh).
+# With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh) and valgrind
+# (tools/instructions-per-sample.sh).
 # Idempotent: does nothing (and needs no network) when everything is already installed.
 set -euo pipefail
 packages=(
@@ -9,7 +10,7 @@ packages=(
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
 )
 # `tools/deps.sh --bench`: also what the benchmark suite needs (tools/bench.sh), not the tests.
-if [ "${1:-}" = "--bench" ]; then packages+=(python3-numpy python3-matplotlib); fi
+if [ "${1:-}" = "--bench" ]; then packages+=(python3-numpy python3-matplotlib valgrind); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -9,7 +9,7 @@
 # include every thread (LP_NUM_THREADS=1: one rasteriser thread) and vary by ~1% from run to run
 # (the host thread's polling). Usage:
 #   tools/instructions-per-sample.sh VKPATH SCENE [render options...]
-# Environment: W, H (default 64, 36), A, B (default 8, 72). Needs valgrind (apt-get install valgrind).
+# Environment: W, H (default 64, 36), A, B (default 8, 72). Needs valgrind (tools/deps.sh --bench installs it).
 set -euo pipefail
 vkpath=$1
 scene=$2
