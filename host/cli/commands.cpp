@@ -29,9 +29,6 @@ namespace vkp {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-/// The job of `vkpath render` / `vkpath info`: the scene by its extension (.gltf / .glb: glTF,
-/// anything else: JSON) with the command line's overrides, and its options as parsed. Prints the
-/// scene's warnings on stderr.
 /// --background, --environment, --environment-strength, --environment-rotate applied to the loaded
 /// scene (host/cli/args.h). Throws InputError with one line naming the option.
 void applyLight(const CliArgs& a, Scene& s) {
@@ -77,6 +74,9 @@ bool hasLight(const Scene& s) {
     return false;
 }
 
+/// The job of `vkpath render` / `vkpath info`: the scene by its extension (.gltf / .glb: glTF,
+/// anything else: JSON) with the command line's overrides, and its options as parsed. Prints the
+/// scene's warnings on stderr, and one when the scene has no light.
 RenderJob makeJob(const CliArgs& a) {
     std::string ext = a.scene.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
