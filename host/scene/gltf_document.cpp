@@ -9,6 +9,7 @@
 #include <exception>
 #include <fstream>
 #include <map>
+#include <set>
 #include <system_error>
 
 #include "core/errors.h"
@@ -26,6 +27,7 @@ constexpr int kMaxImageSide = 16384;
 struct LoadContext {
     const tinygltf::Model* model = nullptr;
     std::map<std::string, std::string> unreadable;  ///< path -> reason
+    std::set<int> ktx2;                              ///< images kept undecoded: KTX2 (KHR_texture_basisu)
 };
 
 bool fileExists(const std::string& path, void* user) {
@@ -101,6 +103,16 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
     if (size <= 0) {
         *err += where + "no image data";
         return false;
+    }
+    // KTX2 (KHR_texture_basisu): no Debian package decodes it. Kept undecoded (no pixels), so a
+    // file that also gives a PNG or JPEG fallback loads; a texture that would use it is refused
+    // by name (gltf_material.cpp).
+    static constexpr unsigned char kKtx2[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+    if (size >= 12 && std::equal(kKtx2, kKtx2 + 12, bytes)) {
+        ctx->ktx2.insert(index);
+        image->width = image->height = 0;
+        image->image.clear();
+        return true;
     }
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
@@ -273,7 +285,7 @@ Document readDocument(const std::filesystem::path& path) {
     }
     // tinygltf only warns about images it could not read (and we saw every read above): refuse them.
     for (std::size_t i = 0; i < doc.model.images.size(); ++i) {
-        if (doc.model.images[i].image.empty()) {
+        if (doc.model.images[i].image.empty() && !ctx.ktx2.count(int(i))) {
             fail(doc.file, "image " + std::to_string(i), "no image data (" + oneLine(warn) + ")");
         }
     }

@@ -127,6 +127,15 @@ std::uint32_t MaterialMapper::texture(int index, bool srgb, const std::string& p
     if (slot >= 0) return std::uint32_t(slot);
     const tinygltf::Texture& t = model.textures[std::size_t(index)];
     const std::string tplace = "texture " + std::to_string(index);
+    if (t.source < 0 && !t.extensions.empty()) {
+        // KHR_texture_basisu, EXT_texture_webp, ...: the image only in a form vkpath cannot decode
+        // (Debian has no KTX2 / Basis Universal decoder); a file may give a PNG or JPEG "source"
+        // as well, which is then used (and the extension is warned about as unsupported).
+        std::string names;
+        for (const auto& [name, unused] : t.extensions) names += (names.empty() ? "" : ", ") + name;
+        fail(doc_.file, tplace, "its image is only given through " + names +
+                                    ", which vkpath cannot decode, and it has no PNG or JPEG \"source\" to fall back on");
+    }
     if (t.source < 0 || std::size_t(t.source) >= model.images.size()) {
         fail(doc_.file, tplace, "has no image vkpath can read (source " + std::to_string(t.source) + "; the file has " +
                                     std::to_string(model.images.size()) + " images)");
@@ -142,6 +151,10 @@ std::uint32_t MaterialMapper::texture(int index, bool srgb, const std::string& p
         out.wrapS = wrap(s.wrapS, doc_.file, splace + "/wrapS");
         out.wrapT = wrap(s.wrapT, doc_.file, splace + "/wrapT");
         out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    }
+    if (model.images[std::size_t(t.source)].image.empty()) {
+        fail(doc_.file, tplace, "image " + std::to_string(t.source) +
+                                    " is KTX2 (Basis Universal), which vkpath cannot decode; give a PNG or JPEG \"source\"");
     }
     std::int64_t& image = imageIndex_[std::size_t(t.source)];
     if (image < 0) {

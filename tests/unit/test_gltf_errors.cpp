@@ -111,6 +111,9 @@ void expectError(const std::filesystem::path& file, const std::string& fragment,
     }
 }
 
+/// A data URI holding the 12-byte KTX2 file identifier (what a KHR_texture_basisu image starts with).
+const char* const kKtx2Uri = "data:application/octet-stream;base64,q0tUWCAyMLsNChoK";
+
 const std::string kPos = "accessor 0 (POSITION of mesh 0 (\"tri\") primitive 0): ";
 const std::string kIdx = "accessor 2 (indices of mesh 0 (\"tri\") primitive 0): ";
 const std::string kPrim = "mesh 0 (\"tri\") primitive 0: ";
@@ -228,6 +231,24 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
              d["meshes"][0]["primitives"][0]["material"] = 0;
          },
          "material 0 (\"m\")/extensions/KHR_materials_transmission/transmissionTexture/index: texture 2 does not exist"},
+        {"texture_basisu_only",
+         [](Json& d, Bytes&) {
+             d["extensionsUsed"] = Json::parse(R"(["KHR_texture_basisu"])");
+             d["images"] = Json::parse(std::string(R"([{"uri": ")") + kKtx2Uri + R"(", "mimeType": "image/ktx2"}])");
+             d["textures"] = Json::parse(R"([{"extensions": {"KHR_texture_basisu": {"source": 0}}}])");
+             d["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "texture 0: its image is only given through KHR_texture_basisu, which vkpath cannot decode, and it has no PNG or "
+         "JPEG \"source\" to fall back on"},
+        {"texture_source_ktx2",
+         [](Json& d, Bytes&) {
+             d["images"] = Json::parse(std::string(R"([{"uri": ")") + kKtx2Uri + R"("}])");
+             d["textures"] = Json::parse(R"([{"source": 0}])");
+             d["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "texture 0: image 0 is KTX2 (Basis Universal), which vkpath cannot decode"},
         {"image_file_missing",
          [](Json& d, Bytes&) {
              d["images"] = Json::parse(R"([{"uri": "missing.png"}])");
@@ -303,6 +324,24 @@ TEST(GltfErrors, TexCoordAboveOneIsAWarningNamingMaterialAndTexture) {
                                  "TEXCOORD_2: vkpath reads TEXCOORD_0 and TEXCOORD_1 only and uses TEXCOORD_0 instead"),
               std::string::npos) << s.warnings[0];
     EXPECT_EQ(s.materials.at(0).pbr.baseColorTexture.texCoord, 0u);
+}
+
+// KHR_texture_basisu with the PNG fallback the extension allows: the PNG is used, the KTX2 image
+// is kept undecoded, and the extension is named in one warning.
+TEST(GltfErrors, BasisuTextureWithAPngFallbackUsesThePng) {
+    const Scene s = loadSceneGltf(writeCase({"basisu_fallback", [](Json& d, Bytes&) {
+        d["extensionsUsed"] = Json::parse(R"(["KHR_texture_basisu"])");
+        d["images"] = Json::parse(std::string(R"([{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAAC0lEQVR42mP4DwQACfsD/Wj6HMwAAAAASUVORK5CYII="}, {"uri": ")") +
+                                 kKtx2Uri + R"(", "mimeType": "image/ktx2"}])");
+        d["textures"] = Json::parse(R"([{"source": 0, "extensions": {"KHR_texture_basisu": {"source": 1}}}])");
+        d["materials"] = Json::parse(R"([{"name": "m", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+        d["meshes"][0]["primitives"][0]["material"] = 0;
+    }, ""}));
+    ASSERT_EQ(s.images.size(), 1u);
+    EXPECT_EQ(s.images[0].width, 1u);
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("extension KHR_texture_basisu is not supported by vkpath: ignored"), std::string::npos)
+        << s.warnings[0];
 }
 
 TEST(GltfErrors, BrokenContainersAndFiles) {
