@@ -211,6 +211,14 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         if (first && !mesh.weights.empty()) {
             scene.warnings.push_back(line(doc.file, "mesh " + std::to_string(mi.mesh), "morph targets ignored: the base shape is drawn"));
         }
+        // Vertex colours are not rendered yet: say so once per mesh (its first primitive with them).
+        for (std::size_t p = 0; first && p < mesh.primitives.size(); ++p) {
+            if (mesh.primitives[p].attributes.count("COLOR_0")) {
+                scene.warnings.push_back(line(doc.file, primitivePlace(doc, mi.mesh, p),
+                                              "COLOR_0 (vertex colours) is not rendered: the material's base colour alone is used"));
+                break;
+            }
+        }
     }
     const std::size_t firstShape = scene.shapes.size();
     scene.shapes.reserve(firstShape + worldTriangles);

@@ -344,6 +344,16 @@ TEST(GltfErrors, BasisuTextureWithAPngFallbackUsesThePng) {
         << s.warnings[0];
 }
 
+// Vertex colours are not rendered yet: one warning per mesh, naming its primitive, not silence.
+TEST(GltfErrors, VertexColoursAreAWarningNotSilence) {
+    const Scene s = loadSceneGltf(writeCase({"color0", [](Json& d, Bytes&) {
+        d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;  // a float VEC3 accessor
+    }, ""}));
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("color0.gltf: mesh 0 (\"tri\") primitive 0: COLOR_0 (vertex colours) is not rendered"),
+              std::string::npos) << s.warnings[0];
+}
+
 TEST(GltfErrors, BrokenContainersAndFiles) {
     const auto dir = test::scratchDir("gltf_errors");
     const std::string good = glb(baseDoc().dump(), baseBin());
