@@ -282,6 +282,7 @@ int runInfo(const CliArgs& a) {
     try {
         instance.emplace(a.validate);
     } catch (const DeviceError& e) {
+        if (a.validate) throw;  // asked for the validation layer: its absence is an error, as for a render
         std::printf("device       none: %s\n", e.what());
         return kExitOk;
     }
