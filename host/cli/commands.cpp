@@ -62,13 +62,9 @@ void applyLight(const CliArgs& a, Scene& s) {
 /// The scene has some light: an emitting surface (placed or instanced) or environment light that
 /// is not black.
 bool hasLight(const Scene& s) {
-    auto emits = [&](const Shape& sh) { return sh.material < s.materials.size() && s.materials[sh.material].emits(); };
-    for (const Shape& sh : s.shapes)
-        if (emits(sh)) return true;
-    for (const InstancedMesh& m : s.meshes)
-        for (const Shape& sh : m.shapes)
-            if (emits(sh)) return true;
-    if (s.render.background != glm::vec3(0.0f)) return true;
+    bool emits = false;
+    forEachShape(s, [&](const Shape& sh) { emits = emits || (sh.material < s.materials.size() && s.materials[sh.material].emits()); });
+    if (emits || s.render.background != glm::vec3(0.0f)) return true;
     for (float x : s.environment.image.rgb)
         if (x > 0.0f) return true;
     return false;

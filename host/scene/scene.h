@@ -282,8 +282,9 @@ inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(
 /// 32-bit floats relative to the camera" if a moved position overflows.
 void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why);
 
-/// The box (in the scene's frame, double) of every shape, placed and instanced; lo > hi when there
-/// is none.
+/// The box (in the scene's frame, double) of every placed shape and of every instance (the box
+/// of its mesh's object-space box, placed: it may be looser than the placed triangles' own);
+/// lo > hi when there is none.
 std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene);
 
 /// A camera for a scene that has none (glTF files without a camera, JSON scenes without "camera"):

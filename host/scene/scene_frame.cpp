@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "core/errors.h"
 #include "scene/scene.h"
@@ -30,36 +31,54 @@ void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why) {
     scene.origin += by;
 }
 
-std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene) {
-    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    auto grow = [&](glm::dvec3 p) {
+namespace {
+/// Grows [lo, hi] by shape s (a sphere's box, a quad's four corners, a triangle's three).
+void growByShape(const Shape& s, glm::dvec3& lo, glm::dvec3& hi) {
+    auto at = [&](glm::dvec3 p) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
     };
-    auto growShape = [&](const Shape& s, const glm::dmat4& m) {
-        auto at = [&](glm::dvec3 p) { grow(glm::dvec3(m * glm::dvec4(p, 1.0))); };
-        const glm::dvec3 p0(s.p0), p1(s.p1), p2(s.p2);
-        switch (s.type) {
-            case ShapeType::Sphere:
-                at(p0 - glm::dvec3(s.radius));
-                at(p0 + glm::dvec3(s.radius));
-                break;
-            case ShapeType::Quad:  // p1, p2: the edges u, v
-                at(p0);
-                at(p0 + p1);
-                at(p0 + p2);
-                at(p0 + p1 + p2);
-                break;
-            case ShapeType::Triangle:
-                at(p0);
-                at(p1);
-                at(p2);
-                break;
+    const glm::dvec3 p0(s.p0), p1(s.p1), p2(s.p2);
+    switch (s.type) {
+        case ShapeType::Sphere:
+            at(p0 - glm::dvec3(s.radius));
+            at(p0 + glm::dvec3(s.radius));
+            break;
+        case ShapeType::Quad:  // p1, p2: the edges u, v
+            at(p0);
+            at(p0 + p1);
+            at(p0 + p2);
+            at(p0 + p1 + p2);
+            break;
+        case ShapeType::Triangle:
+            at(p0);
+            at(p1);
+            at(p2);
+            break;
+    }
+}
+
+constexpr double kHuge = std::numeric_limits<double>::max();
+}  // namespace
+
+std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene) {
+    glm::dvec3 lo(kHuge), hi(-kHuge);
+    for (const Shape& s : scene.shapes) growByShape(s, lo, hi);
+    // An instanced mesh's object-space box once, then its eight corners per instance: a box of
+    // the placed mesh, at the cost of the instances and not of their triangles.
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> meshBoxes(scene.meshes.size(), {glm::dvec3(kHuge), glm::dvec3(-kHuge)});
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const Shape& s : scene.meshes[m].shapes) growByShape(s, meshBoxes[m].first, meshBoxes[m].second);
+    for (const MeshInstance& mi : scene.instances) {
+        const auto& [mlo, mhi] = meshBoxes.at(mi.mesh);
+        if (!(mlo.x <= mhi.x)) continue;  // an empty mesh
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? mhi.x : mlo.x, (corner & 2) ? mhi.y : mlo.y, (corner & 4) ? mhi.z : mlo.z);
+            const glm::dvec3 w(mi.objectToWorld * glm::dvec4(p, 1.0));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
         }
-    };
-    for (const Shape& s : scene.shapes) growShape(s, glm::dmat4(1.0));
-    for (const MeshInstance& mi : scene.instances)
-        for (const Shape& s : scene.meshes.at(mi.mesh).shapes) growShape(s, mi.objectToWorld);
+    }
     return {lo, hi};
 }
 

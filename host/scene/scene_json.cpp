@@ -121,44 +121,46 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     top.finish();
 
     // Everything but the camera, in the frame whose origin is `origin` (file coordinates).
-    auto read = [&](glm::dvec3 origin) {
+    if (description) description->string();
+    // The geometry (render settings, materials, objects) in the frame whose origin is `origin`
+    // (file coordinates); what does not depend on the frame is read once, below.
+    auto readGeometry = [&](glm::dvec3 origin) {
         Scene scene;
         scene.path = file;
         scene.origin = origin;
-        if (description) description->string();
         if (render) scene.render = scenejson::readRender(*render);
         std::map<std::string, std::uint32_t> index;
         if (materials) scenejson::readMaterials(*materials, scene, index);
         scenejson::readObjects(objects, index, options.instancing, scene);
-        if (environment) {
-            if (scene.render.background != glm::vec3(0.0f))
-                environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
-            scene.environment = scenejson::readEnvironment(*environment, file);
-        }
         return scene;
     };
+    Scene scene;
     if (camera) {
         // The camera first: its position is the origin of the frame every coordinate is expressed in.
         glm::dvec3 origin(0.0);
         const Camera cam = scenejson::readCamera(*camera, origin);
-        Scene scene = read(origin);
+        scene = readGeometry(origin);
         scene.camera = cam;
-        return scene;
+    } else {
+        // No camera: the framing camera of a glTF file without one (docs/gltf.md), square unless
+        // the options give a size. The geometry is read twice, the second time relative to that
+        // camera, so that every coordinate is still rounded to float once, relative to the camera.
+        const auto [lo, hi] = sceneBounds(readGeometry(glm::dvec3(0.0)));
+        const std::uint32_t width = options.width.value_or(options.height.value_or(kGltfDefaultImageSide));
+        const std::uint32_t height = options.height.value_or(width);
+        // Framed about the box's centre c (the scene's size decides the framing, not its distance
+        // from the file's origin), then placed at c + that camera's position.
+        const glm::dvec3 c = (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+        glm::dvec3 position;
+        const Camera cam = framingCamera(name, lo - c, hi - c, width, height, position);
+        scene = readGeometry(c + position);
+        scene.camera = cam;
     }
-    // No camera: the framing camera of a glTF file without one (docs/gltf.md), square unless the
-    // options give a size. The scene is read twice, the second time relative to that camera, so
-    // that every coordinate is still rounded to float once, relative to the camera.
-    const Scene firstPass = read(glm::dvec3(0.0));
-    const auto [lo, hi] = sceneBounds(firstPass);
-    const std::uint32_t width = options.width.value_or(options.height.value_or(kGltfDefaultImageSide));
-    const std::uint32_t height = options.height.value_or(width);
-    // Framed about the box's centre c (the scene's size decides the framing, not its distance
-    // from the file's origin), then placed at c + that camera's position.
-    const glm::dvec3 c = (lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) ? 0.5 * (lo + hi) : glm::dvec3(0.0);
-    glm::dvec3 position;
-    const Camera cam = framingCamera(name, lo - c, hi - c, width, height, position);
-    Scene scene = read(c + position);
-    scene.camera = cam;
+    if (environment) {  // directions only: the same in every frame, and the map is read once
+        if (scene.render.background != glm::vec3(0.0f))
+            environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
+        scene.environment = scenejson::readEnvironment(*environment, file);
+    }
     return scene;
 }
 

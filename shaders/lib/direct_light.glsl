@@ -70,7 +70,7 @@ float emitterHitPdf(GpuPrim p, vec3 x, vec3 d) {
 /// estimation would have sampled it (emitterHitPdf). 1 for the samplers without next-event
 /// estimation. The `light` sampler needs it only where a glossy BSDF occurs (VKP_HAS_GLOSSY_BSDF).
 float foundLightWeight(float prevBsdfPdf, GpuPrim p, vec3 prevX, vec3 d) {
-    bool weighted = HAS_EMITTERS && (SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF));
+    bool weighted = SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF);
     if (!weighted || !(prevBsdfPdf > 0.0f) || primLight(p) < 0) return 1.0f;
     return powerHeuristic(prevBsdfPdf, emitterHitPdf(p, prevX, d));
 }

@@ -118,11 +118,11 @@ TEST_F(CliRender, InfoChecksTheRenderAgainstTheDevice) {
 TEST_F(CliRender, BackgroundAndEnvironmentFromTheCommandLine) {
     VKP_REQUIRE_DEVICE(dev);
     const std::string noLight = scene("gltf/no-camera.gltf");
-    auto render = [&](std::vector<std::string> extra, const char* out) {
-        std::vector<std::string> args = {"render", "", "--validate", "--spp", "8", "--width", "32", "--height", "24", "--quiet",
-                                         "-o", out};
-        args.insert(args.end(), extra.begin() + 1, extra.end());
-        args[1] = extra[0];
+    // render({SCENE, options...}, OUT): the scene first, then its options.
+    auto render = [&](std::vector<std::string> sceneAndOptions, const char* out) {
+        std::vector<std::string> args = {"render"};
+        args.insert(args.end(), sceneAndOptions.begin(), sceneAndOptions.end());
+        args.insert(args.end(), {"--validate", "--spp", "8", "--width", "32", "--height", "24", "--quiet", "-o", out});
         const ProcessResult r = run(args);
         EXPECT_EQ(r.exitCode, 0) << r.err;
         return readImage(dir / out);

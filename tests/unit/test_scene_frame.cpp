@@ -139,5 +139,31 @@ TEST(SceneFrame, InFileFrameUndoesTheMove) {
     EXPECT_EQ(s.shapes[0].p0, glm::vec3(555, 0, 0));
 }
 
+// sceneBounds (the framing camera's box): placed shapes exactly, and each instance as the placed
+// box of its mesh's object-space box.
+TEST(SceneFrame, BoundsOfShapesAndInstances) {
+    Scene s;
+    Shape tri;
+    tri.type = ShapeType::Triangle;
+    tri.p0 = glm::vec3(0.0f);
+    tri.p1 = glm::vec3(1.0f, 0.0f, 0.0f);
+    tri.p2 = glm::vec3(0.0f, 1.0f, 0.0f);
+    const auto [elo, ehi] = sceneBounds(s);
+    EXPECT_GT(elo.x, ehi.x) << "empty: lo > hi";
+    s.meshes.push_back(InstancedMesh{"m", {tri}});
+    MeshInstance a, b;
+    a.objectToWorld[3] = glm::dvec4(10.0, 0.0, 0.0, 1.0);
+    b.objectToWorld = glm::dmat4(2.0);
+    b.objectToWorld[3] = glm::dvec4(0.0, -5.0, 3.0, 1.0);
+    s.instances = {a, b};
+    Shape sphere;
+    sphere.p0 = glm::vec3(0.0f, 0.0f, -4.0f);
+    sphere.radius = 1.0f;
+    s.shapes.push_back(sphere);
+    const auto [lo, hi] = sceneBounds(s);
+    EXPECT_EQ(lo, glm::dvec3(-1.0, -5.0, -5.0));
+    EXPECT_EQ(hi, glm::dvec3(11.0, 1.0, 3.0));
+}
+
 }  // namespace
 }  // namespace vkp::test
