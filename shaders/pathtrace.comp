@@ -105,7 +105,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     vec3 uBsdf = bsdfNumbers(b, s.smp);
     vec3 xo = spawnFrom(h, h.ns);
     bool nee = !bsdfIsDelta(b) && neeOn();
-    if (nee) s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, sampleNext2(s.smp), rays, passes);
+    if (nee || (punctualOn() && !bsdfIsDelta(b)))  // punctual lights: next-event estimation under every sampler
+        s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
     vec3 dir;
     if (mixtureOn(b)) {
         if (!sampleMixture(b, xo, uStrategy, uBsdf, s.throughput, dir, passes)) return true;

@@ -15,6 +15,16 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
   no-camera.gltf               no camera: vkpath frames the scene's bounds
   emissive.glb                 emissive triangles (single- and double-sided), a PNG inside the GLB
   extensions.gltf              an extension vkpath does not implement, only used: one warning
+  lights.gltf                  KHR_lights_punctual (tests/unit/test_gltf_lights.cpp): a point, a
+                               spot (with range) and a directional light on translated, rotated and
+                               scaled nodes, one light no node uses, over a floor of albedo 0.8
+  vertex-colors.gltf           COLOR_0 (tests/gpu/test_gpu_vertex_colors.cpp): four quads whose
+                               corner colours are linear in x and y, as uint16, float RGBA (alpha
+                               under MASK), float RGB and uint8
+  unlit.gltf                   KHR_materials_unlit (tests/gpu/test_gpu_unlit.cpp): two quads of one
+                               unlit colour, one facing the camera's side, one turned away
+  point-lamp.gltf              Blender's light units (tests/gpu/test_gpu_punctual.cpp): a 100 W
+                               point lamp as Blender's exporter writes it, 2 m above that floor
   textures.gltf                textures on the device (tests/gpu/test_gpu_textures.cpp): a 4x4 image
                                of 16 distinct sRGB colours on quads with UVs in [-0.75, 1.75] and
                                pure Lambertian materials (specularFactor 0): nearest filtering with
@@ -359,13 +369,80 @@ def emissive(out):
 
 def extensions(out):
     g = Gltf()
-    g.doc["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
-    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 10}]}}
+    g.doc["extensionsUsed"] = ["KHR_materials_variants", "KHR_materials_emissive_strength"]
+    g.doc["extensions"] = {"KHR_materials_variants": {"variants": [{"name": "plain"}]}}
     g.add("meshes", {"primitives": [{"attributes": {"POSITION": g.positions([(0, 0, 0), (1, 0, 0), (0, 1, 0)])}}]})
-    g.doc["nodes"] = [{"mesh": 0}, {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}]
+    g.doc["nodes"] = [{"mesh": 0}]
     g.doc["scene"] = 0
-    g.doc["scenes"] = [{"nodes": [0, 1]}]
+    g.doc["scenes"] = [{"nodes": [0]}]
     g.write_gltf(out / "extensions.gltf")
+
+
+LAMBERT_08 = {"name": "lambert 0.8", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0,
+                                                              "roughnessFactor": 1},
+              "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+
+
+def floor_mesh(g, half):
+    """A Lambertian (albedo 0.8) floor [-half, half]^2 in the plane y = 0, facing +y."""
+    g.doc.setdefault("extensionsUsed", []).append("KHR_materials_specular")
+    m = g.add("materials", LAMBERT_08)
+    pts = [(-half, 0, -half), (-half, 0, half), (half, 0, half), (half, 0, -half)]
+    return g.add("meshes", {"name": "floor", "primitives": [{"attributes": {"POSITION": g.positions(pts)},
+                                                            "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR"),
+                                                            "material": m}]})
+
+
+def lights(out):
+    """KHR_lights_punctual: a point, a spot and a directional light on rotated nodes."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    floor = floor_mesh(g, 5)
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "bulb", "type": "point", "color": [1, 0.5, 0.25], "intensity": 683},
+        {"name": "spot", "type": "spot", "intensity": 1366, "range": 20, "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.5}},
+        {"name": "sun", "type": "directional", "color": [0.5, 0.5, 1], "intensity": 341.5},
+        {"name": "unused", "type": "point"},
+    ]}}
+    h = math.sqrt(0.5)
+    g.doc["nodes"] = [
+        {"name": "floor", "mesh": floor},
+        {"name": "bulb", "translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        # -90 degrees about x: the node's -z (the way a light shines) becomes -y (down).
+        {"name": "rig", "translation": [0, 4, 0], "rotation": [-h, 0, 0, h], "scale": [2, 2, 2], "children": [3]},
+        {"name": "spot", "translation": [0.5, 0, 0], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        # 90 degrees about y: -z becomes -x.
+        {"name": "sun", "rotation": [0, h, 0, h], "extensions": {"KHR_lights_punctual": {"light": 2}}},
+    ]
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]
+    g.add("nodes", {"name": "camera", "camera": 0, "translation": [0, 3, 8]})
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2, 4, 5]}]
+    g.write_gltf(out / "lights.gltf")
+
+
+POINT_LAMP_WATTS = 100.0
+
+
+def point_lamp(out):
+    """Blender's units: a point lamp of 100 W 2 m above a floor of albedo 0.8, written as Blender's
+    exporter writes it (W / (4 pi) x 683 cd); a camera 1 m above the floor looks straight down at
+    the spot below the lamp (yfov 0.1)."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    floor = floor_mesh(g, 10)
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "lamp", "type": "point", "intensity": POINT_LAMP_WATTS / (4 * math.pi) * 683}]}}
+    h = math.sqrt(0.5)
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.1, "aspectRatio": 1.0, "znear": 0.01}}]
+    g.doc["nodes"] = [
+        {"name": "floor", "mesh": floor},
+        {"name": "lamp", "translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"name": "camera", "camera": 0, "translation": [0, 1, 0], "rotation": [-h, 0, 0, h]},
+    ]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2]}]
+    g.write_gltf(out / "point-lamp.gltf")
 
 
 TEXTURE_4 = [[(40 + 60 * x, 40 + 60 * y, 200 - 50 * x, 255) for x in range(4)] for y in range(4)]
@@ -464,6 +541,66 @@ def alpha(out):
     g.doc["scene"] = 0
     g.doc["scenes"] = [{"nodes": list(range(len(g.doc["nodes"])))}]
     g.write_gltf(out / "alpha.gltf")
+
+
+VC_C00 = (0.2, 0.9, 0.1, 0.0)  # COLOR_0 at (x, y) = (x0, 0): c00 + x dcdx + y dcdy on each 2 x 2 quad
+VC_DCDX = (0.3, -0.2, 0.1, 0.5)
+VC_DCDY = (0.1, 0.0, 0.35, 0.0)
+
+
+def vertex_colors(out):
+    """COLOR_0 (tests/gpu/test_gpu_vertex_colors.cpp): four 2 x 2 quads at z = 0 facing +z (quad i at
+    x in [3 i, 3 i + 2], y in [0, 2]) of a Lambertian base colour 0.8, whose corner colours are
+    VC_C00 + x VC_DCDX + y VC_DCDY (x, y relative to the quad's corner): 0 "ushort" RGBA as
+    normalized uint16, 1 "mask" RGBA as float under alphaMode MASK (cutoff 0.5: the left half, alpha
+    < 0.5, is a hole), 2 "float3" RGB as float, 3 "ubyte" RGBA as normalized uint8."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+
+    def mat(name, **extra):
+        m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0,
+                                                    "roughnessFactor": 1},
+             "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}
+        m.update(extra)
+        return m
+    g.doc["materials"] = [mat("ushort"), mat("mask", alphaMode="MASK", alphaCutoff=0.5), mat("float3"), mat("ubyte")]
+    corners = [(0, 0), (2, 0), (2, 2), (0, 2)]
+    # Vertex attribute elements must be 4-byte aligned: 8- and 16-bit colours are VEC4.
+    for i, (ctype, n) in enumerate(((USHORT, 4), (FLOAT, 4), (FLOAT, 3), (UBYTE, 4))):
+        x0 = 3.0 * i
+        cols = [[VC_C00[k] + x * VC_DCDX[k] + y * VC_DCDY[k] for k in range(n)] for x, y in corners]
+        if ctype == FLOAT:
+            values = [c for col in cols for c in col]
+        else:
+            scale = 65535 if ctype == USHORT else 255
+            values = [int(round(c * scale)) for col in cols for c in col]
+        attrs = {"POSITION": g.positions([(x0 + x, y, 0.0) for x, y in corners]),
+                 "COLOR_0": g.accessor(values, ctype, "VEC4" if n == 4 else "VEC3", normalized=ctype != FLOAT)}
+        g.add("meshes", {"name": g.doc["materials"][i]["name"], "primitives": [{
+            "attributes": attrs, "material": i, "indices": g.accessor([0, 1, 2, 0, 2, 3], UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": m["name"], "mesh": i} for i, m in enumerate(g.doc["materials"])]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1, 2, 3]}]
+    g.write_gltf(out / "vertex-colors.gltf")
+
+
+def unlit(out):
+    """KHR_materials_unlit (tests/gpu/test_gpu_unlit.cpp): two 2 x 2 quads at z = 0 of an unlit base
+    colour (0.2, 0.4, 0.6): quad 0 at x in [0, 2] facing +z, quad 1 at x in [3, 5] facing -z (its
+    back to a camera on +z; single-sided)."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_unlit"]
+    g.doc["materials"] = [{"name": "unlit", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1]},
+                           "extensions": {"KHR_materials_unlit": {}}}]
+    for i, x0 in enumerate((0.0, 3.0)):
+        pts = [(x0, 0, 0), (x0 + 2, 0, 0), (x0 + 2, 2, 0), (x0, 2, 0)]
+        idx = [0, 1, 2, 0, 2, 3] if i == 0 else [0, 2, 1, 0, 3, 2]
+        g.add("meshes", {"name": "front" if i == 0 else "back", "primitives": [{
+            "attributes": {"POSITION": g.positions(pts)}, "material": 0, "indices": g.accessor(idx, UBYTE, "SCALAR")}]})
+    g.doc["nodes"] = [{"name": "front", "mesh": 0}, {"name": "back", "mesh": 1}]
+    g.doc["scene"] = 0
+    g.doc["scenes"] = [{"nodes": [0, 1]}]
+    g.write_gltf(out / "unlit.gltf")
 
 
 def emissive_texture(out):
@@ -815,7 +952,7 @@ def main():
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
     for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture,
-                  emissive_spot, instances, specular_textures, transmission_textures, texcoord1):
+                  emissive_spot, instances, specular_textures, transmission_textures, texcoord1, lights, point_lamp, vertex_colors, unlit):
         write(out)
 
 

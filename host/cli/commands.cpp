@@ -59,9 +59,11 @@ void applyLight(const CliArgs& a, Scene& s) {
     }
 }
 
-/// The scene has some light: an emitting surface (placed or instanced) or environment light that
-/// is not black.
+/// The scene has some light: an emitting surface (placed or instanced), a punctual light that is
+/// not black, or environment light that is not black.
 bool hasLight(const Scene& s) {
+    for (const PunctualLight& l : s.punctualLights)
+        if (l.intensity != glm::vec3(0.0f)) return true;
     bool emits = false;
     forEachShape(s, [&](const Shape& sh) { emits = emits || (sh.material < s.materials.size() && s.materials[sh.material].emits()); });
     if (emits || s.render.background != glm::vec3(0.0f)) return true;
@@ -100,7 +102,7 @@ RenderJob makeJob(const CliArgs& a) {
     applyLight(a, s);
     if (!hasLight(s))
         std::fprintf(stderr,
-                     "vkpath: warning: %s has no light (no emitting surface, no environment, a black background): the "
+                     "vkpath: warning: %s has no light (no emitting surface, no punctual light, no environment, a black background): the "
                      "image will be black; add --background R,G,B or --environment FILE\n",
                      a.scene.string().c_str());
     if (a.spp) s.render.spp = *a.spp;
@@ -235,7 +237,12 @@ int runInfo(const CliArgs& a) {
                 countShapes(scene, ShapeType::Triangle));
     std::size_t emitters = 0;
     for (std::uint32_t l : scene.lights) emitters += scene.materials[scene.shapes[l].material].emits();
-    std::printf("lights       %zu sampled objects (%zu emitting)\n", scene.lights.size(), emitters);
+    std::printf("lights       %zu sampled objects (%zu emitting)", scene.lights.size(), emitters);
+    std::size_t punctual[gpu::PUNCTUAL_KIND_COUNT] = {};
+    for (const PunctualLight& l : scene.punctualLights) ++punctual[std::uint32_t(l.kind)];
+    for (std::uint32_t k = 0; k < gpu::PUNCTUAL_KIND_COUNT; ++k)
+        if (punctual[k]) std::printf(", %zu %s", punctual[k], gpu::kPunctualKindNames[k]);
+    std::printf("\n");
     std::printf("materials    %zu\n", scene.materials.size());
     std::printf("bvh          %zu nodes, %zu leaves, depth %u, SAH cost %.3f, built in %.2f ms\n", bvh.stats.nodeCount,
                 bvh.stats.leafCount, bvh.stats.maxDepth, bvh.stats.sahCost, bvh.stats.buildMs);

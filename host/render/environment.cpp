@@ -20,6 +20,8 @@ double rowMeanSin(std::uint32_t j, std::uint32_t h) {
     return (std::cos(t0) - std::cos(t1)) / (t1 - t0);
 }
 
+}  // namespace
+
 double sceneRadius(const Scene& scene) {
     glm::dvec3 lo(1e300), hi(-1e300);
     auto add = [&](glm::dvec3 p) {
@@ -53,7 +55,6 @@ double sceneRadius(const Scene& scene) {
     if (scene.shapes.empty() && scene.instances.empty()) return 1.0;
     return std::max(0.5 * glm::length(hi - lo), 1e-6);
 }
-}  // namespace
 
 bool hasEnvironmentLight(const Scene& scene) {
     return scene.environment.hasMap() || scene.render.background != glm::vec3(0.0f);
@@ -105,9 +106,9 @@ double envMeanLuminance(const Scene& scene) {
 
 double envPickProbability(const Scene& scene, LightPick pick) {
     if (!hasEnvironmentLight(scene)) return 0.0;
-    if (pick == LightPick::Uniform) return 1.0 / (1.0 + double(emittingLightCount(scene)));
+    if (pick == LightPick::Uniform) return 1.0 / (1.0 + double(emittingLightCount(scene) + scene.punctualLights.size()));
     double emitters = 0.0;
-    for (double w : lightPowers(scene)) emitters += w;
+    for (double w : pickWeights(scene)) emitters += w;
     if (!(emitters > 0.0)) return 1.0;
     const double r = sceneRadius(scene);
     const double env = 4.0 * kPi * r * r * envMeanLuminance(scene);

@@ -35,9 +35,14 @@ EnvTables packEnvironment(const Scene& scene);
 /// power, clamped to [0.1, 0.9] so that neither kind starves when the estimate is poor. Power
 /// estimates (pbrt-v4's Phi, up to the common factor pi): environment 4 pi r^2 Lavg (r = radius of
 /// the scene's bounding sphere, Lavg = solid-angle mean of the luminance), emitters the sum of
-/// lightPower (light_table.h). With LightPick::Uniform the environment is one more light among
-/// the n emitters: 1 / (n + 1).
+/// pickWeights (light_table.h: emitting surfaces and punctual lights). With LightPick::Uniform the
+/// environment is one more light among the n emitters: 1 / (n + 1).
 double envPickProbability(const Scene& scene, LightPick pick = LightPick::Power);
+
+/// Radius of the bounding sphere of the scene's geometry (half the diagonal of its box; at least
+/// 1e-6), 1 for a scene without shapes: the size of the environment and of directional lights in
+/// power estimates.
+double sceneRadius(const Scene& scene);
 
 /// Solid-angle mean of the luminance of the environment (map or constant background).
 double envMeanLuminance(const Scene& scene);

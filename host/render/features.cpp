@@ -17,10 +17,17 @@ template <std::size_t N>
 std::string bitNames(std::uint32_t mask, const char* const (&names)[N]) {
     std::string out;
     for (std::uint32_t i = 0; i < N; ++i)
-        if ((mask >> i) & 1u) out += (out.empty() ? "" : "+") + std::string(names[i]);
+        if ((mask >> i) & 1u) {
+            if (!out.empty()) out += '+';
+            out += names[i];
+        }
     return out.empty() ? "none" : out;
 }
 std::uint32_t bit(std::uint32_t i) { return 1u << i; }
+/// Names of the bits of the LIGHTS mask: the primitive kinds, then punctual lights.
+constexpr const char* kLightKindNames[] = {"sphere", "quad", "triangle", "instance", "punctual"};
+static_assert(std::size(kLightKindNames) == gpu::LIGHT_KIND_PUNCTUAL + 1 && gpu::LIGHT_KIND_PUNCTUAL == gpu::PRIM_KIND_COUNT,
+              "a name per bit of the LIGHTS mask");
 }  // namespace
 
 std::vector<SpecConstant> Features::specTable() const {
@@ -39,7 +46,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_SHAPES, "SHAPES", shapes, "prims:" + bitNames(shapes, gpu::kPrimKindNames)},
         {VKP_SPEC_MATERIALS, "MATERIALS", materials, materialsLabel},
         {VKP_SPEC_HAS_EMITTERS, "HAS_EMITTERS", emitters, ""},  // in the materials label
-        {VKP_SPEC_LIGHTS, "LIGHTS", lights, "lights:" + bitNames(lights, gpu::kPrimKindNames)},
+        {VKP_SPEC_LIGHTS, "LIGHTS", lights, "lights:" + bitNames(lights, kLightKindNames)},
         {VKP_SPEC_SAMPLER, "SAMPLER", std::uint32_t(sampler), std::string("sampler:") + samplerName(sampler)},
         {VKP_SPEC_SEQUENCE, "SEQUENCE", std::uint32_t(sequence), std::string("sequence:") + sequenceName(sequence)},
         {VKP_SPEC_SOLID_ANGLE_LIGHTS, "SOLID_ANGLE_LIGHTS", lightSampling != LightSampling::Area,
@@ -56,6 +63,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_HAS_TEXCOORD1, "HAS_TEXCOORD1", texCoord1, on(texCoord1, "texcoord1")},
         {VKP_SPEC_HAS_ALPHA, "HAS_ALPHA", alpha, on(alpha, "alpha")},
         {VKP_SPEC_HAS_INSTANCES, "HAS_INSTANCES", instances, on(instances, "instances")},
+        {VKP_SPEC_HAS_VERTEX_COLORS, "HAS_VERTEX_COLORS", vertexColors, on(vertexColors, "vertex-colors")},
         {VKP_SPEC_WORKGROUP_X, "WORKGROUP_X", workgroupX, ""},  // the image does not depend on it
         {VKP_SPEC_WORKGROUP_Y, "WORKGROUP_Y", workgroupY, ""},
     };
@@ -89,10 +97,11 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
     f.workgroupY = options.workgroupY;
     const std::uint32_t surfaceKinds = bit(gpu::PRIM_SPHERE) | bit(gpu::PRIM_QUAD) | bit(gpu::PRIM_TRIANGLE);
     if (options.fullVariant) {
-        f.shapes = f.lights = surfaceKinds;
+        f.shapes = surfaceKinds;
+        f.lights = surfaceKinds | bit(gpu::LIGHT_KIND_PUNCTUAL);
         f.materials = bit(gpu::MAT_TYPE_COUNT) - 1u;
         f.emitters = f.defocus = f.environment = f.environmentMap = true;
-        f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = true;
+        f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = f.vertexColors = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -101,6 +110,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         used[s.material] = true;
         if (s.sampled) f.lights |= bit(std::uint32_t(s.type));
     });
+    if (!scene.punctualLights.empty()) f.lights |= bit(gpu::LIGHT_KIND_PUNCTUAL);
     f.instances = !scene.instances.empty();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
@@ -120,7 +130,8 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
     f.extensionTextures = sceneHasExtensionTextures(scene);
     f.texCoord1 = f.textures && sceneHasTexCoord1(scene);
     f.alpha = sceneHasAlpha(scene);
-    f.vertexAttributes = f.textures || f.alpha || sceneHasVertexAttributes(scene);  // textures need the UVs
+    f.vertexColors = sceneHasVertexColors(scene);
+    f.vertexAttributes = f.textures || f.alpha || f.vertexColors || sceneHasVertexAttributes(scene);  // textures need the UVs
     return f;
 }
 

@@ -34,6 +34,7 @@ struct Features {
     bool extensionTextures = false;  ///< ... a KHR_materials_specular or _transmission texture (lib/surface.glsl)
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     bool instances = false;         ///< two-level BVH: the scene has instanced meshes (shared/instance.h)
+    bool vertexColors = false;      ///< glTF COLOR_0 tints some MAT_PBR material (lib/surface.glsl)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

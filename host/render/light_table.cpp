@@ -1,8 +1,12 @@
 #include "render/light_table.h"
 
 #include <bit>
+#include <cmath>
+#include <numbers>
 
 #include "render/emitter_power.h"
+#include "render/environment.h"
+#include "shared/punctual_light.h"
 
 namespace vkp {
 
@@ -62,17 +66,40 @@ AliasTable buildAliasTable(const std::vector<double>& weights) {
     return t;
 }
 
+std::vector<double> pickWeights(const Scene& scene) {
+    std::vector<double> w = lightPowers(scene);
+    if (scene.punctualLights.empty()) return w;
+    const double radius = sceneRadius(scene);
+    for (const PunctualLight& l : scene.punctualLights) w.push_back(l.power(radius) / std::numbers::pi);
+    return w;
+}
+
 std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape, LightPick pick) {
-    std::vector<double> power = lightPowers(scene);
+    std::vector<double> power = pickWeights(scene);
     if (pick == LightPick::Uniform)
         for (double& w : power) w = w > 0.0 ? 1.0 : 0.0;
     const AliasTable table = buildAliasTable(power);
+    const std::size_t surfaces = scene.lights.size();
     std::vector<gpu::GpuLight> out;
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    for (std::size_t i = 0; i < power.size(); ++i) {
+        const std::uint32_t what = i < surfaces ? primOfShape.at(scene.lights[i]) : (gpu::LIGHT_PUNCTUAL_BIT | std::uint32_t(i - surfaces));
         gpu::GpuLight l{};
-        l.l0 = glm::vec4(std::bit_cast<float>(primOfShape.at(scene.lights[i])), table.probability[i], table.threshold[i],
-                         std::bit_cast<float>(table.alias[i]));
+        l.l0 = glm::vec4(std::bit_cast<float>(what), table.probability[i], table.threshold[i], std::bit_cast<float>(table.alias[i]));
         out.push_back(l);
+    }
+    // The punctual lights' records, with the pick among them alone (the bsdf and mixture samplers).
+    const AliasTable own = buildAliasTable(std::vector<double>(power.begin() + std::ptrdiff_t(surfaces), power.end()));
+    for (std::size_t k = 0; k < scene.punctualLights.size(); ++k) {
+        const PunctualLight& p = scene.punctualLights[k];
+        const float cosOuter = std::cos(p.outerCone);
+        gpu::GpuPunctualLight r{};
+        const glm::vec3 at = p.kind == PunctualLight::Kind::Directional ? -p.direction : p.position;
+        r.q0 = glm::vec4(at, std::bit_cast<float>(std::uint32_t(p.kind)));
+        r.q1 = glm::vec4(p.intensity, gpu::spotScale(std::cos(p.innerCone), cosOuter));
+        r.q2 = glm::vec4(p.direction, cosOuter);
+        r.q3 = glm::vec4(own.probability[k], own.threshold[k], std::bit_cast<float>(own.alias[k]), 0.0f);
+        static_assert(sizeof(r) == gpu::GPU_PUNCTUAL_TEXELS * sizeof(gpu::GpuLight));
+        for (const glm::vec4& t : {r.q0, r.q1, r.q2, r.q3}) out.push_back(gpu::GpuLight{t});
     }
     return out;
 }

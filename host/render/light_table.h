@@ -22,6 +22,10 @@ double lightPower(const Scene& scene, std::uint32_t shape);
 /// lightPower of every entry of scene.lights, in order (the textures packed once for all).
 std::vector<double> lightPowers(const Scene& scene);
 
+/// The weights of the power pick, in the order of its entries: lightPowers(scene), then every
+/// punctual light's PunctualLight::power / pi (the same units: lightPower leaves out the factor pi).
+std::vector<double> pickWeights(const Scene& scene);
+
 /// Alias table for the discrete distribution `weights` (non-negative, any scale; all zero gives
 /// an empty table). threshold[i] in [0,1], alias[i] < n; the probability of i is
 /// (threshold[i] + sum over j with alias[j] = i of (1 - threshold[j])) / n = weights[i] / sum.
@@ -32,14 +36,18 @@ struct AliasTable {
 };
 AliasTable buildAliasTable(const std::vector<double>& weights);
 
-/// One GpuLight per entry of scene.lights, in order; primOfShape maps a shape to its primitive.
-/// Emitters are picked in proportion to their power (lightPower), or each with the same
-/// probability for LightPick::Uniform; objects of power 0 (no emission, or a triangle whose
-/// emissive texture is black wherever the kernel can read it) get probability 0 either way.
+/// The lights buffer (shared/gpu_types.h): one GpuLight per entry of scene.lights, in order
+/// (primOfShape maps a shape to its primitive), one per punctual light, then the punctual lights'
+/// records (GPU_PUNCTUAL_TEXELS entries each, from entry scene.lights.size() +
+/// scene.punctualLights.size() on). Emitters and punctual lights are picked in proportion to
+/// their power (pickWeights), or each with the same probability for LightPick::Uniform; objects of
+/// power 0 (no emission, or a triangle whose emissive texture is black wherever the kernel can read
+/// it) get probability 0 either way. Each punctual record also holds the pick among the punctual
+/// lights alone (GpuPunctualLight::q3), by the same rule.
 std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std::uint32_t>& primOfShape,
                                       LightPick pick = LightPick::Power);
 
-/// Number of entries of scene.lights whose material emits.
+/// Number of entries of scene.lights whose material emits (punctual lights not counted).
 std::uint32_t emittingLightCount(const Scene& scene);
 
 }  // namespace vkp

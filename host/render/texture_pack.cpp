@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/packing.hpp>
+
 #include "shared/texture_sample.h"
 
 namespace vkp {
@@ -94,18 +96,26 @@ bool sceneHasAlpha(const Scene& scene) {
     return false;
 }
 
-bool sceneHasVertexAttributes(const Scene& scene) {
+namespace {
+/// True if some mesh triangle whose kernel material is MAT_PBR has one of the attribute flags in mask.
+bool pbrTriangleHas(const Scene& scene, std::uint32_t mask) {
     std::vector<int> pbr(scene.materials.size(), -1);
     bool found = false;
     forEachShape(scene, [&](const Shape& s) {
         if (found || s.type != ShapeType::Triangle || s.attributes == Shape::kNoAttributes) return;
         int& p = pbr[s.material];
         if (p < 0) p = kernelMaterial(scene.materials[s.material]).type == MaterialType::Pbr ? 1 : 0;
-        const std::uint32_t f = scene.triangleVertices.at(s.attributes).flags;
-        if (p == 1 && (f & (TriangleVertices::kHasNormal | TriangleVertices::kHasUv))) found = true;
+        if (p == 1 && (scene.triangleVertices.at(s.attributes).flags & mask)) found = true;
     });
     return found;
 }
+}  // namespace
+
+bool sceneHasVertexAttributes(const Scene& scene) {
+    return pbrTriangleHas(scene, TriangleVertices::kHasNormal | TriangleVertices::kHasUv);
+}
+
+bool sceneHasVertexColors(const Scene& scene) { return pbrTriangleHas(scene, TriangleVertices::kHasColor); }
 
 TexturePack packTextures(const Scene& scene) {
     TexturePack out;
@@ -152,6 +162,7 @@ TexturePack packTextures(const Scene& scene) {
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh) {
     std::vector<glm::uvec4> out(std::max<std::size_t>(bvh.primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
     std::vector<glm::uvec4> uv1Records;  // appended after the primitive records
+    std::vector<glm::uvec4> colorRecords;  // appended after those
     const MeshVertices& mv = scene.vertices;
     for (std::size_t i = 0; i < bvh.primToShape.size(); ++i) {
         const Shape* sp = primShape(scene, bvh, i);
@@ -172,15 +183,30 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& 
             uv1Records.emplace_back(bits(c.x), bits(c.y), 0u, 0u);
         }
         rec[1] = glm::uvec4(bits(uv[2].x), bits(uv[2].y), tv.flags, uv1At);
+        std::uint32_t colorAt = 0;  // as uv1At, relative to the records' end until they are all placed
+        if ((tv.flags & TriangleVertices::kHasColor) && !mv.color.empty()) {
+            const glm::vec4 a = mv.color.at(tv.v[0]), b = mv.color.at(tv.v[1]), c = mv.color.at(tv.v[2]);
+            colorAt = std::uint32_t(colorRecords.size()) + 1u;
+            colorRecords.emplace_back(glm::packHalf2x16(glm::vec2(a.x, a.y)), glm::packHalf2x16(glm::vec2(a.z, a.w)),
+                                      glm::packHalf2x16(glm::vec2(b.x, b.y)), glm::packHalf2x16(glm::vec2(b.z, b.w)));
+            colorRecords.emplace_back(glm::packHalf2x16(glm::vec2(c.x, c.y)), glm::packHalf2x16(glm::vec2(c.z, c.w)), 0u, 0u);
+        }
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 n = (tv.flags & TriangleVertices::kHasNormal) ? mv.normal.at(tv.v[k]) : glm::vec3(0.0f);
-            rec[2 + k] = glm::uvec4(bits(n.x), bits(n.y), bits(n.z), 0u);
+            rec[2 + k] = glm::uvec4(bits(n.x), bits(n.y), bits(n.z), k == 0 ? colorAt : 0u);
             glm::vec4 t(0.0f);
             if ((tv.flags & TriangleVertices::kHasTangent) && !mv.tangent.empty()) t = mv.tangent.at(tv.v[k]);
             rec[5 + k] = glm::uvec4(bits(t.x), bits(t.y), bits(t.z), bits(t.w));
         }
     }
     out.insert(out.end(), uv1Records.begin(), uv1Records.end());
+    // The colour records go last: their texel is known now (colorAt - 1 counted from here).
+    const std::uint32_t colorBase = std::uint32_t(out.size());
+    for (std::size_t i = 0; i < bvh.primToShape.size() && !colorRecords.empty(); ++i) {
+        std::uint32_t& at = out[i * kAttributeTexels + 2].w;
+        if (at != 0u) at = colorBase + (at - 1u);
+    }
+    out.insert(out.end(), colorRecords.begin(), colorRecords.end());
     return out;
 }
 

@@ -233,7 +233,7 @@ std::string line(const std::string& file, const std::string& place, const std::s
 bool extensionImplemented(const std::string& name) {
     static const char* const kImplemented[] = {
         "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_transmission",
-        "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization",
+        "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_materials_unlit",
     };
     return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
 }

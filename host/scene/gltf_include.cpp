@@ -44,6 +44,7 @@ void GltfIncludes::append(const std::filesystem::path& file, const GltfInclude& 
     Scene ignoredWarnings;  // a later include repeats the first one's warnings about nodes
     const gltf::Instances inst = gltf::traverse(*f->doc, include.sceneIndex, include.transform, first ? scene_ : ignoredWarnings);
     gltf::appendInstances(*f->doc, inst, *f->state, instancing_, std::max<std::uint32_t>(f->expected, 1), scene_);
+    gltf::appendLights(*f->doc, inst, scene_);
     // The last announced include: the document is no longer needed (an include not announced would
     // read the file again, as a file of its own).
     if (++f->appended >= f->expected) {

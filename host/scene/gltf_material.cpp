@@ -1,5 +1,6 @@
 // glTF materials -> MaterialType::Pbr (glTF 2.0 sec. 3.9; KHR_materials_emissive_strength,
-// KHR_materials_specular, KHR_materials_transmission, KHR_materials_ior, KHR_texture_transform),
+// KHR_materials_specular, KHR_materials_transmission, KHR_materials_ior, KHR_materials_unlit,
+// KHR_texture_transform),
 // textures and samplers (sec. 3.8) -> Scene::textures / Scene::images.
 #include <cmath>
 #include <cstdio>
@@ -272,6 +273,26 @@ Material MaterialMapper::convert(int m) {
     else fail(f, place + "/alphaMode", "\"" + g.alphaMode + "\" is not OPAQUE, MASK or BLEND");
     p.alphaCutoff = scalar(g.alphaCutoff, 0.0, kInf, f, place + "/alphaCutoff");
     out.twoSided = g.doubleSided;
+    if (const Value* u = extension(g.extensions, "KHR_materials_unlit", f, place)) {
+        (void)u;
+        // Unlit (docs/gltf.md): the surface shows its base colour whatever light falls on it. In a
+        // path tracer: an emitter of radiance = base colour (x its texture, through the emissive
+        // slot), reflecting nothing; the other properties are ignored, as the extension says.
+        p.unlit = true;
+        out.emit = glm::vec3(p.baseColor);
+        p.emissiveTexture = p.baseColorTexture;
+        p.metallic = 0.0f;
+        p.specular = 0.0f;
+        p.baseColor = glm::vec4(0.0f, 0.0f, 0.0f, p.baseColor.w);  // black where it does not emit
+        out.albedo = glm::vec3(0.0f);
+        p.baseColorTexture = TextureRef{};
+        p.metallicRoughnessTexture = TextureRef{};
+        p.normalTexture = TextureRef{};
+        p.specularTexture = TextureRef{};
+        p.specularColorTexture = TextureRef{};
+        p.transmission = 0.0f;
+        p.transmissionTexture = TextureRef{};
+    }
     return out;
 }
 

@@ -198,7 +198,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
 
     MeshVertices& mv = scene.vertices;
     const std::size_t base = mv.size();
-    const std::size_t mark[4] = {mv.normal.size(), mv.uv.size(), mv.tangent.size(), mv.uv1.size()};
+    const std::size_t mark[5] = {mv.normal.size(), mv.uv.size(), mv.tangent.size(), mv.uv1.size(), mv.color.size()};
     std::uint32_t flags = 0;
     // NORMAL: by the inverse transpose, unit length (zero where degenerate, or absent: flat).
     {
@@ -238,6 +238,29 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
             }
         }
     }
+    // COLOR_0: float, or normalized unsigned byte / short, VEC3 or VEC4 (glTF 2.0 sec. 3.7.2.1); it
+    // multiplies the base colour (and its alpha). Negative floats are clamped to 0.
+    if (const int index = attribute(p, "COLOR_0"); index >= 0) {
+        const int type = std::size_t(index) < doc.model.accessors.size() ? doc.model.accessors[std::size_t(index)].type : 0;
+        if (std::size_t(index) < doc.model.accessors.size() && type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            fail(doc.file, "accessor " + std::to_string(index) + " (COLOR_0 of " + where + ")", "is not VEC3 or VEC4");
+        const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        const std::vector<float> colors = readAttribute(doc, p, "COLOR_0", where, components, {kFloat, kUByte, kUShort}, nv);
+        const auto& a = doc.model.accessors[std::size_t(index)];
+        if (a.componentType != kFloat && !a.normalized) {
+            fail(doc.file, "accessor " + std::to_string(index) + " (COLOR_0 of " + where + ")",
+                 "integer colours must be normalized (glTF 2.0 sec. 3.7.2.1)");
+        }
+        flags |= TriangleVertices::kHasColor;
+        mv.color.resize(base, glm::vec4(1.0f));
+        for (std::size_t i = 0; i < nv; ++i) {
+            const float* c = &colors[std::size_t(components) * i];
+            mv.color.emplace_back(std::max(c[0], 0.0f), std::max(c[1], 0.0f), std::max(c[2], 0.0f),
+                                  components == 4 ? std::clamp(c[3], 0.0f, 1.0f) : 1.0f);
+        }
+    } else if (!mv.color.empty()) {
+        mv.color.resize(base + nv, glm::vec4(1.0f));
+    }
     const bool normalMapped = scene.materials.at(material).type == MaterialType::Pbr &&
                               scene.materials[material].pbr.normalTexture.valid();
     {
@@ -267,6 +290,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
         mv.uv.resize(mark[1]);
         mv.tangent.resize(mark[2]);
         mv.uv1.resize(mark[3]);
+        mv.color.resize(mark[4]);
         return;
     }
 

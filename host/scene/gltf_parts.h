@@ -155,10 +155,23 @@ struct CameraInstance {
     std::size_t camera = 0;
     glm::dmat4 world{1.0};
 };
+/// One node that carries a KHR_lights_punctual light, with its world matrix.
+struct LightInstance {
+    std::size_t node = 0;
+    std::size_t light = 0;  ///< index into the model's lights
+    glm::dmat4 world{1.0};
+};
 struct Instances {
     std::vector<MeshInstance> meshes;     ///< in depth-first order of the hierarchy
     std::vector<CameraInstance> cameras;  ///< in depth-first order of the hierarchy
+    std::vector<LightInstance> lights;    ///< in depth-first order of the hierarchy
 };
+
+/// The punctual lights placed by inst.lights (KHR_lights_punctual), appended to scene.punctualLights
+/// in radiometric units (candela and lux / kLumensPerWatt), positioned by their nodes' world
+/// matrices (already camera-relative) and pointing along the node's -Z. Throws InputError naming
+/// the light (and the node) for a light vkpath cannot render.
+void appendLights(const Document& doc, const Instances& inst, Scene& scene);
 
 /// Every mesh and camera instance of the chosen scene (sceneIndex; default: the file's "scene",
 /// else 0), with world matrices root * hierarchy. Warnings (skins) go to out.warnings.

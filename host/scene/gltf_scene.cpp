@@ -1,6 +1,7 @@
 // The node hierarchy of a glTF scene (glTF 2.0 sec. 3.5): world matrices, mesh and camera
 // instances; loadSceneGltf, and the placement shared with JSON includes (gltf_include.cpp).
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/errors.h"
@@ -17,6 +18,13 @@ std::vector<double> checked(const std::vector<double>& v, std::size_t n, const D
         if (!std::isfinite(v[i])) fail(doc.file, place + "/" + std::to_string(i), "must be finite");
     }
     return v;
+}
+
+/// A light index as the file wrote it, for messages.
+std::string light_index_text(double index) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", index);
+    return buf;
 }
 
 /// The node's local matrix: "matrix" (column-major) or T * R * S (sec. 3.5.3).
@@ -112,6 +120,17 @@ Instances traverse(const Document& doc, std::optional<std::uint32_t> sceneIndex,
             if (node.skin >= 0) {
                 out.warnings.push_back(line(doc.file, nodePlace(doc, i), "skin ignored: the mesh is drawn in its bind pose, placed by the node"));
             }
+        }
+        if (const auto ext = node.extensions.find("KHR_lights_punctual"); ext != node.extensions.end()) {
+            const tinygltf::Value& light = ext->second.Get("light");
+            const std::string place = nodePlace(doc, i) + "/extensions/KHR_lights_punctual/light";
+            if (!light.IsInt() && !light.IsNumber()) fail(doc.file, place, "must be the index of a light");
+            const double index = light.IsInt() ? double(light.Get<int>()) : light.Get<double>();
+            if (!(index >= 0.0) || index != std::floor(index) || index >= double(model.lights.size())) {
+                fail(doc.file, place, "light " + light_index_text(index) + " does not exist (the file has " +
+                                          std::to_string(model.lights.size()) + " lights)");
+            }
+            found.lights.push_back({i, std::size_t(index), world});
         }
         if (node.camera >= 0) {
             if (std::size_t(node.camera) >= model.cameras.size()) {
@@ -210,14 +229,6 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         }
         if (first && !mesh.weights.empty()) {
             scene.warnings.push_back(line(doc.file, "mesh " + std::to_string(mi.mesh), "morph targets ignored: the base shape is drawn"));
-        }
-        // Vertex colours are not rendered yet: say so once per mesh (its first primitive with them).
-        for (std::size_t p = 0; first && p < mesh.primitives.size(); ++p) {
-            if (mesh.primitives[p].attributes.count("COLOR_0")) {
-                scene.warnings.push_back(line(doc.file, primitivePlace(doc, mi.mesh, p),
-                                              "COLOR_0 (vertex colours) is not rendered: the material's base colour alone is used"));
-                break;
-            }
         }
     }
     const std::size_t firstShape = scene.shapes.size();
@@ -332,11 +343,13 @@ Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& option
         scene.origin = glm::dvec3(inst.meshes.front().world[3]);
     }
     for (gltf::MeshInstance& mi : inst.meshes) mi.world[3] -= glm::dvec4(scene.origin, 0.0);
+    for (gltf::LightInstance& li : inst.lights) li.world[3] -= glm::dvec4(scene.origin, 0.0);
     glm::dmat4 cameraWorld = chosen ? chosen->world : glm::dmat4(1.0);
     cameraWorld[3] -= glm::dvec4(scene.origin, 0.0);
 
     gltf::PlacementState state{gltf::MaterialMapper(doc, scene, std::nullopt)};
     const auto [lo, hi] = gltf::appendInstances(doc, inst, state, options.instancing, 1, scene);
+    gltf::appendLights(doc, inst, scene);
     if (chosen) {
         scene.camera = gltf::cameraFromGltf(doc, chosen->camera, cameraWorld, options);
     } else {

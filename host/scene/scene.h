@@ -65,6 +65,9 @@ struct PbrParams {
     TextureRef transmissionTexture;        ///< linear, factor in R
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;              ///< Mask: alpha < cutoff is a hole
+    /// KHR_materials_unlit: the loader made it an emitter of the base colour (Material::emit, the
+    /// base colour texture as emissiveTexture) that reflects nothing (docs/gltf.md).
+    bool unlit = false;
 };
 
 struct Material {
@@ -106,11 +109,12 @@ struct Shape {
 /// 16 bytes (one uvec4 texel on the GPU).
 struct TriangleVertices {
     std::uint32_t v[3] = {0, 0, 0};
-    std::uint32_t flags = 0;  ///< kHasNormal | kHasUv | kHasTangent | kHasUv1 (the kernel's ATTR_*, shared/kinds.h)
+    std::uint32_t flags = 0;  ///< kHasNormal | kHasUv | kHasTangent | kHasUv1 | kHasColor (the kernel's ATTR_*, shared/kinds.h)
     static constexpr std::uint32_t kHasNormal = gpu::ATTR_HAS_NORMAL;    ///< else shade with the geometric (flat) normal
     static constexpr std::uint32_t kHasUv = gpu::ATTR_HAS_UV;            ///< else UV = (0,0)
     static constexpr std::uint32_t kHasTangent = gpu::ATTR_HAS_TANGENT;  ///< from the file, or generated for a normal map
     static constexpr std::uint32_t kHasUv1 = gpu::ATTR_HAS_UV1;          ///< TEXCOORD_1 (else none: no texture may use it)
+    static constexpr std::uint32_t kHasColor = gpu::ATTR_HAS_COLOR;      ///< COLOR_0 (else white, opaque)
 };
 
 /// Per-vertex shading attributes of mesh triangles, in world space, structure of arrays. normal
@@ -121,6 +125,7 @@ struct MeshVertices {
     std::vector<glm::vec2> uv;       ///< TEXCOORD_0 (glTF convention: v down, (0,0) = top left of the image)
     std::vector<glm::vec2> uv1;      ///< TEXCOORD_1 (as uv: empty, or as long as normal)
     std::vector<glm::vec4> tangent;  ///< xyz unit tangent, w = +-1: bitangent = w * cross(normal, tangent.xyz)
+    std::vector<glm::vec4> color;    ///< COLOR_0, linear RGBA (alpha 1 for a VEC3 accessor), >= 0 (as uv: empty or as long as normal)
     std::size_t size() const { return normal.size(); }
 };
 
@@ -198,6 +203,24 @@ struct MeshInstance {
     glm::dmat4 objectToWorld{1.0};   ///< column-major, last row (0, 0, 0, 1)
 };
 
+/// A point, spot or directional light (KHR_lights_punctual; the JSON scenes' point_light,
+/// spot_light, directional_light): a delta light, sampled by next-event estimation only, never hit
+/// by rays (shaders/shared/punctual_light.h). Radiometric units, linear RGB.
+struct PunctualLight {
+    enum class Kind : std::uint32_t { Point = gpu::PUNCTUAL_POINT, Spot = gpu::PUNCTUAL_SPOT, Directional = gpu::PUNCTUAL_DIRECTIONAL };
+    Kind kind = Kind::Point;
+    std::string name;              ///< for messages and `vkpath info`, e.g. "light 0 (\"Lamp\")" or "/objects/3"
+    glm::vec3 position{0.0f};      ///< point, spot: world units, camera-relative (Scene::origin)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< spot: its axis; directional: the way the light travels (unit)
+    glm::vec3 intensity{0.0f};     ///< point, spot: W/sr; directional: irradiance on a surface facing it, W/m^2
+    float innerCone = 0.0f;        ///< spot: radians, 0 <= inner < outer
+    float outerCone = 0.785398163f;  ///< spot: radians, <= pi/2 (glTF's default: pi/4)
+    /// Emitted power in W (Rec. 709 luminance of the intensity): 4 pi I (point), 2 pi I times the
+    /// falloff's solid-angle integral / 2 pi (spot), E pi r^2 for a directional light over a disk
+    /// of the scene's bounding radius r (sceneRadius, given).
+    double power(double sceneRadius) const;
+};
+
 struct Scene {
     std::filesystem::path path;  ///< file it was loaded from (for messages)
     /// Camera-relative space (pbrt-v4's "camera-world" frame): every position of this Scene
@@ -212,6 +235,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<std::uint32_t> lights;  ///< indices into shapes of every sampled shape, in file order
+    std::vector<PunctualLight> punctualLights;  ///< point, spot and directional lights, in file order
     /// Shared meshes and their instances (two-level BVH); empty unless a glTF file was loaded (or
     /// included) with instancing. Never lights: an instanced mesh does not emit.
     std::vector<InstancedMesh> meshes;

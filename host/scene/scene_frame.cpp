@@ -28,6 +28,14 @@ void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why) {
         }
     }
     for (MeshInstance& mi : scene.instances) mi.objectToWorld[3] -= glm::dvec4(by, 0.0);
+    for (PunctualLight& l : scene.punctualLights) {
+        if (l.kind == PunctualLight::Kind::Directional) continue;
+        l.position = glm::vec3(glm::dvec3(l.position) - by);
+        if (!allFinite(l.position)) {
+            throw InputError(scene.path.string() + ": " + std::string(why) + ": " + l.name +
+                             " is outside the range of 32-bit floats relative to the camera");
+        }
+    }
     scene.origin += by;
 }
 

@@ -1,5 +1,6 @@
 // The "objects" section of the JSON scene format (scenes/README.md): spheres, quads, boxes,
-// triangles and included glTF files, moved to world space by their "transform", and the light list.
+// triangles, included glTF files and punctual lights, moved to world space by their "transform",
+// and the light list.
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -8,6 +9,7 @@
 #include "core/errors.h"
 #include "scene/gltf.h"
 #include "scene/json_reader.h"
+#include "scene/punctual_light.h"
 #include "scene/scene_json_parts.h"
 #include "scene/transform.h"
 
@@ -70,7 +72,8 @@ Shape transformed(const LocalShape& s, const ObjectTransform& xf, glm::dvec3 ori
 std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
                               const Scene& scene) {
     json::Object o = v.object();
-    const std::string type = o.choice("type", {"sphere", "quad", "box", "triangle", "gltf"});
+    const std::string type =
+        o.choice("type", {"sphere", "quad", "box", "triangle", "gltf", "point_light", "spot_light", "directional_light"});
 
     const json::Value matValue = o.required("material");
     const std::string matName = matValue.string();
@@ -149,6 +152,60 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         out.push_back(w);
     }
     return out;
+}
+
+bool isPunctualObject(const json::Value& v) {
+    const json::Json& j = v.json();
+    if (!j.is_object()) return false;
+    const auto t = j.find("type");
+    if (t == j.end() || !t->is_string()) return false;
+    const std::string type = t->get<std::string>();
+    return type == "point_light" || type == "spot_light" || type == "directional_light";
+}
+
+/// {"type": "point_light" | "spot_light" | "directional_light", ...} (scenes/README.md "Lights"):
+/// a punctual light in radiometric units, moved by its "transform" and made camera-relative.
+PunctualLight readPunctual(const json::Value& v, const Scene& scene) {
+    json::Object o = v.object();
+    const std::string type = o.choice("type", {"point_light", "spot_light", "directional_light"});
+    PunctualLight l;
+    l.name = "the light at " + v.pointer();
+    ObjectTransform xf;
+    if (auto t = o.optional("transform")) xf = readTransform(*t);
+    const double pi = 3.14159265358979323846;
+    if (type == "directional_light") {
+        l.kind = PunctualLight::Kind::Directional;
+        const json::Value dir = o.required("direction");
+        const glm::dvec3 d = xf.map.vector(dir.dvec3());
+        if (!(glm::length(d) > 0.0)) dir.fail("must not be zero");
+        l.direction = glm::vec3(glm::normalize(d));
+        l.intensity = o.vec3("irradiance", json::Range::atLeast(0.0));
+    } else {
+        l.kind = type == "spot_light" ? PunctualLight::Kind::Spot : PunctualLight::Kind::Point;
+        l.position = glm::vec3(xf.map.point(o.dvec3("position")) - scene.origin);
+        const auto intensity = o.optional("intensity");
+        const auto power = o.optional("power");
+        if (intensity && power) power->fail("give either intensity (W/sr) or power (W), not both");
+        if (!intensity && !power) o.fail("a " + type + " needs \"intensity\" (W/sr) or \"power\" (W)");
+        // Power as Blender states it: a spot of power P is as bright as a point light of power P.
+        l.intensity = intensity ? intensity->vec3(json::Range::atLeast(0.0))
+                                : glm::vec3(glm::dvec3(power->vec3(json::Range::atLeast(0.0))) / (4.0 * pi));
+        if (l.kind == PunctualLight::Kind::Spot) {
+            const json::Value dir = o.required("direction");
+            const glm::dvec3 d = xf.map.vector(dir.dvec3());
+            if (!(glm::length(d) > 0.0)) dir.fail("must not be zero");
+            l.direction = glm::vec3(glm::normalize(d));
+            const float outer = o.number("outer_angle", json::Range::closed(0.0, 90.0), 45.0f);
+            if (!(outer > 0.0f)) o.required("outer_angle").fail("must be > 0");
+            const float inner = o.number("inner_angle", json::Range::closed(0.0, 90.0), 0.0f);
+            if (!(inner < outer)) o.required("inner_angle").fail("must be less than outer_angle (" + std::to_string(outer) + ")");
+            l.outerCone = float(double(outer) * pi / 180.0);
+            l.innerCone = float(double(inner) * pi / 180.0);
+        }
+    }
+    o.finish();
+    if (const std::string problem = punctualLightProblem(l); !problem.empty()) v.fail(problem);
+    return l;
 }
 
 /// The include's file, resolved against the JSON file's folder.
@@ -233,6 +290,10 @@ void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t
     for (const json::Value& item : v.array()) {
         if (isGltfObject(item)) {
             readGltfObject(item, index, scene, includes);
+            continue;
+        }
+        if (isPunctualObject(item)) {
+            scene.punctualLights.push_back(readPunctual(item, scene));
             continue;
         }
         for (const Shape& s : readObject(item, index, scene)) {

@@ -2,7 +2,7 @@
 // every candidate hit, closest-hit and shadow rays alike). Compiled in only for scenes with a MASK
 // or BLEND material (HAS_ALPHA, host/render/features.cpp); other scenes never define the hook.
 //   MASK:  the hit counts iff alpha >= alphaCutoff (a cut-out), alpha = baseColorFactor.a x the
-//          base colour texture's alpha (linear) at the hit;
+//          base colour texture's alpha (linear) x COLOR_0's alpha at the hit;
 //   BLEND: stochastic transparency: the hit counts with probability alpha, decided by a hash of the
 //          primitive index and the ray's bits, so the same ray always makes the same decision (the
 //          render stays deterministic) and different rays decide independently. The pixel then
@@ -37,11 +37,12 @@ bool alphaAccept(uint primIndex, GpuPrim p, vec2 ab, vec3 o, vec3 d) {
     uvec4 a = texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL));  // (mode, cutoff, normal scale, alpha factor)
     if (a.x == ALPHA_OPAQUE) return true;
     float alpha = uintBitsToFloat(a.w);
-    if (HAS_TEXTURES) {
+    if (HAS_TEXTURES || HAS_VERTEX_COLORS) {
         int base = int(primIndex * ATTR_TEXELS);
         vec4 a0 = fetchF(uAttributes, base);
         vec4 a1 = fetchF(uAttributes, base + 1);
-        if ((floatBitsToUint(a1.z) & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
+        alpha *= vertexColor(base, floatBitsToUint(a1.z), ab).w;  // COLOR_0's alpha (1 without it)
+        if (HAS_TEXTURES && (floatBitsToUint(a1.z) & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
             vec2 uv = (1.0f - ab.x - ab.y) * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
             vec4 c;
             if (sampleSlot(rec, TEX_SLOT_BASE_COLOR, uv, attributeUv1(a1, ab, uv), c)) alpha *= c.w;

@@ -81,6 +81,16 @@ GpuLight fetchLight(uint i) {
     l.l0 = fetchF(uLights, int(i));
     return l;
 }
+/// Punctual light k's record (after the light list: GpuFrame::lightList.z).
+GpuPunctualLight fetchPunctual(uint k) {
+    int at = int(frame.lightList.z + k * GPU_PUNCTUAL_TEXELS);
+    GpuPunctualLight l;
+    l.q0 = fetchF(uLights, at);
+    l.q1 = fetchF(uLights, at + 1);
+    l.q2 = fetchF(uLights, at + 2);
+    l.q3 = fetchF(uLights, at + 3);
+    return l;
+}
 
 // ---- Instances (two-level BVH, shared/instance.h): compiled in only for scenes that have some.
 // The traversal (lib/traverse_wide.glsl) tests VKP_HAS_INSTANCES.

@@ -10,6 +10,13 @@
 // by the power heuristic against the BSDF's density of the same direction; the BSDF's own sample
 // then counts the light it hits with the complementary weight (foundLightWeight). Under `light` at
 // other BSDFs the weight is 1 and the path ignores the lights its BSDF samples find.
+//
+// Punctual lights (point, spot, directional: shared/punctual_light.h) are delta lights: under
+// `light` and `mis` they are entries of the power pick like the emitting surfaces, with MIS weight
+// 1 (no BSDF sample can find them). No other strategy can find them at all, so under `bsdf` and
+// `mixture` a non-delta vertex samples them too: one punctual light picked by power among the
+// punctual lights alone, one shadow ray (punctualOn). That adds what those samplers would
+// otherwise never see; it counts nothing twice, so every sampler stays unbiased.
 #ifndef VKP_DIRECT_LIGHT_GLSL
 #define VKP_DIRECT_LIGHT_GLSL
 #include "lib/bindings.glsl"
@@ -22,10 +29,13 @@
 /// Next-event estimation is on for this sampler and this scene (something to sample).
 bool neeOn() { return (SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && (emitterCount() > 0u || envOn()); }
 
+/// The `bsdf` and `mixture` samplers' next-event estimation of the punctual lights alone.
+bool punctualOn() { return HAS_PUNCTUAL_LIGHTS && !(SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS) && punctualCount() > 0u; }
+
 /// The light sample is weighted by MIS against the BSDF at this vertex.
 bool neeWeighted(Bsdf b) { return SAMPLER == SAMPLER_MIS || bsdfIsGlossy(b); }
 
-/// One light sample's contribution beta f cos Le w / p at the non-delta vertex x (BSDF b, offset
+/// One light sample's contribution beta f cos Le w / p (a punctual light: beta f cos E / pick) at the non-delta vertex x (BSDF b, offset
 /// origin xo, on primitive prim / p), with uStrategy in [0,1) choosing the light (the vertex's
 /// strategy number) and uLight in [0,1)^2 the point on it; 0 when the sample is occluded, finds no
 /// light or leaves below the surface. Counts the shadow ray in rays.
@@ -34,7 +44,9 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     float pEnv = envPickProb();
     LightRay r;
     float pick;
-    if (!HAS_EMITTERS || uStrategy < pEnv) {  // without emitters pEnv is 1: the variant drops their branch
+    if (!(SAMPLER == SAMPLER_LIGHT || SAMPLER == SAMPLER_MIS)) {  // bsdf, mixture: punctual lights only (punctualOn)
+        r = samplePunctual(pickPunctual(uStrategy, pick), x, xo);
+    } else if (!HAS_PICKED_LIGHTS || uStrategy < pEnv) {  // without emitters pEnv is 1: the variant drops their branch
         r = sampleEnvironmentLight(b.n, xo, uLight, passes);
         pick = pEnv;
     } else {
@@ -50,7 +62,7 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     // ray's traversal loop (on a SIMD device such as lavapipe, the BSDF's state would otherwise
     // occupy registers, or spill, for every pass of that loop).
     float pl = r.pdf * pick;
-    float w = neeWeighted(b) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
+    float w = (neeWeighted(b) && !r.delta) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
     vec3 contribution = evalBsdf(b, beta, r.dir) * r.le * (w / pl);
     rays++;
     if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);

@@ -73,6 +73,7 @@ LightRay sampleEnvironmentLight(vec3 n, vec3 xo, vec2 u, inout uint passes) {
     r.le = (r.pdf > 0.0f) ? envRadiance(r.dir) : vec3(0.0f);
     r.shadowDir = r.dir;
     r.shadowLength = VKP_FAR;
+    r.delta = false;
     return r;
 }
 

@@ -14,6 +14,7 @@
 #include "shared/intersect.h"
 #include "shared/light_pick.h"
 #include "shared/light_sampling.h"
+#include "shared/punctual_light.h"
 #include "shared/ray_offset.h"
 #include "shared/rect_sampling.h"
 #include "shared/triangle_sampling.h"
@@ -63,7 +64,8 @@ float pdfLightPrim(GpuPrim p, vec3 x, vec3 d) {
     return pdf;
 }
 
-/// Number of sampled objects that emit: power-proportional picks exist when it is > 0.
+/// Number of sampled objects that emit, plus the punctual lights: power-proportional picks exist
+/// when it is > 0.
 uint emitterCount() { return frame.counts.z; }
 
 /// Pick one sampled object uniformly with u in [0,1) (the book's mixture): its light index.
@@ -73,11 +75,18 @@ uint pickLightUniform(float u, out float pickPdf) {
     return pickUniform(u, n);
 }
 
-/// Pick one emitter in proportion to its power with u in [0,1): its light index. Requires
-/// emitterCount() > 0; objects that do not emit have probability 0 and are never picked.
+/// Number of punctual lights (shared/punctual_light.h).
+uint punctualCount() { return HAS_PUNCTUAL_LIGHTS ? frame.lightList.y : 0u; }
+
+/// Entries of the power pick: the sampled objects, then the punctual lights.
+uint pickCount() { return HAS_PUNCTUAL_LIGHTS ? frame.lightList.x : lightCount(); }
+
+/// Pick one emitter (emitting surface or punctual light) in proportion to its power with u in
+/// [0,1): its light index. Requires emitterCount() > 0; objects that do not emit have probability
+/// 0 and are never picked.
 uint pickLightPower(float u, out float pickPdf) {
     float frac;
-    uint column = aliasColumn(u, lightCount(), frac);
+    uint column = aliasColumn(u, pickCount(), frac);
     uint li = aliasResolve(column, frac, fetchLight(column));
     pickPdf = fetchLight(li).l0.y;
     return li;
@@ -104,9 +113,44 @@ struct LightRay {
     float pdf;           ///< solid-angle density of dir, without the pick probability (0: no sample)
     vec3 shadowDir;      ///< the shadow ray from the offset point xo ...
     float shadowLength;  ///< ... and its length (world units; VKP_FAR: to infinity)
+    bool delta;          ///< a punctual light: le is the irradiance (radiance integrated over the
+                         ///< delta), pdf 1, and no BSDF sample can find it (MIS weight 1)
 };
 
-/// A point on light li (light-list index), sampled from the hit x (offset origin xo) on primitive
+/// Punctual light k's one sample from the hit x (offset origin xo): direction, the irradiance it
+/// brings to a surface facing it (in le), pdf 1 (0 when x is at the light), and the shadow ray
+/// from xo to the light's position (to infinity for a directional light).
+LightRay samplePunctual(uint k, vec3 x, vec3 xo) {
+    GpuPunctualLight l = fetchPunctual(k);
+    PunctualSample ps = samplePunctualLight(l, x);
+    LightRay r;
+    r.dir = ps.dir;
+    r.le = ps.le;
+    r.pdf = ps.valid ? 1.0f : 0.0f;
+    r.delta = true;
+    r.shadowDir = ps.dir;
+    r.shadowLength = VKP_FAR;
+    if (floatBitsToUint(l.q0.w) != PUNCTUAL_DIRECTIONAL) {
+        vec3 s = vec3(l.q0.x, l.q0.y, l.q0.z) - xo;  // nothing to offset at the light's end
+        float len = length(s);
+        r.shadowDir = (len > 0.0f) ? s / len : ps.dir;
+        r.shadowLength = len;
+    }
+    return r;
+}
+
+/// Pick one punctual light in proportion to its power with u in [0,1), among the punctual lights
+/// alone (GpuPunctualLight::q3's alias table): its index. Requires punctualCount() > 0.
+uint pickPunctual(float u, out float pickPdf) {
+    float frac;
+    uint column = aliasColumn(u, punctualCount(), frac);
+    vec4 q3 = fetchPunctual(column).q3;
+    uint k = (frac < q3.y) ? column : floatBitsToUint(q3.z);
+    pickPdf = fetchPunctual(k).q3.x;
+    return k;
+}
+
+/// A point on light li (light-list index; a punctual light: samplePunctual), sampled from the hit x (offset origin xo) on primitive
 /// `prim` (p) with u in [0,1)^2: direction, emitted radiance (emissive textures applied), pdf and
 /// the shadow ray between the two offset points (shared/ray_offset.h). A flat light cannot light
 /// itself: no sample of it from a point on it (rounding may put the hit point on either side of
@@ -114,6 +158,8 @@ struct LightRay {
 LightRay sampleEmitter(uint li, vec3 x, vec3 xo, uint prim, GpuPrim p, vec2 u) {
     LightRay r;
     uint lprim = floatBitsToUint(fetchLight(li).l0.x);
+    if (HAS_PUNCTUAL_LIGHTS && (lprim & LIGHT_PUNCTUAL_BIT) != 0u) return samplePunctual(lprim & ~LIGHT_PUNCTUAL_BIT, x, xo);
+    r.delta = false;
     GpuPrim lp = fetchPrim(lprim);
     LightSample ls = sampleLightPrim(lp, x, u);
     bool self = lprim == prim && primKind(p) != PRIM_SPHERE;

@@ -10,7 +10,7 @@
 layout(constant_id = VKP_SPEC_SHAPES) const uint SHAPES = 0xffffffffu;        // bit PRIM_* per kind in the BVH
 layout(constant_id = VKP_SPEC_MATERIALS) const uint MATERIALS = 0xffffffffu;  // bit MAT_* per type used
 layout(constant_id = VKP_SPEC_HAS_EMITTERS) const bool HAS_EMITTERS = true;
-layout(constant_id = VKP_SPEC_LIGHTS) const uint LIGHTS = 0xffffffffu;        // bit PRIM_* per kind in the light list
+layout(constant_id = VKP_SPEC_LIGHTS) const uint LIGHTS = 0xffffffffu;        // bit PRIM_* per kind in the light list, LIGHT_KIND_PUNCTUAL
 layout(constant_id = VKP_SPEC_SAMPLER) const uint SAMPLER = 2u;               // SAMPLER_* (shared/kinds.h)
 layout(constant_id = VKP_SPEC_SEQUENCE) const uint SEQUENCE = 1u;             // SEQUENCE_* (shared/sample_stream.h)
 // Next-event estimation samples quads and triangles in solid angle (else in area) from points
@@ -31,6 +31,7 @@ layout(constant_id = VKP_SPEC_HAS_EXTENSION_TEXTURES) const bool HAS_EXTENSION_T
 layout(constant_id = VKP_SPEC_HAS_TEXCOORD1) const bool HAS_TEXCOORD1 = true;
 layout(constant_id = VKP_SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;          // lib/alpha.glsl
 layout(constant_id = VKP_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // shared/instance.h
+layout(constant_id = VKP_SPEC_HAS_VERTEX_COLORS) const bool HAS_VERTEX_COLORS = true;  // COLOR_0 (lib/surface.glsl)
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;
@@ -48,5 +49,10 @@ const bool HAS_PBR = (MATERIALS & (1u << MAT_PBR)) != 0u;  // glTF metallic-roug
 const bool HAS_SPHERE_LIGHTS = (LIGHTS & (1u << PRIM_SPHERE)) != 0u;
 const bool HAS_QUAD_LIGHTS = (LIGHTS & (1u << PRIM_QUAD)) != 0u;
 const bool HAS_TRIANGLE_LIGHTS = (LIGHTS & (1u << PRIM_TRIANGLE)) != 0u;
+// Point, spot and directional lights (shared/punctual_light.h): delta lights, sampled by
+// next-event estimation under every sampler.
+const bool HAS_PUNCTUAL_LIGHTS = (LIGHTS & (1u << LIGHT_KIND_PUNCTUAL)) != 0u;
+// Something for the power-proportional pick: an emitting surface or a punctual light.
+const bool HAS_PICKED_LIGHTS = HAS_EMITTERS || HAS_PUNCTUAL_LIGHTS;
 
 #endif

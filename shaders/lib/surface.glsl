@@ -1,5 +1,5 @@
 // Surface attributes of glTF mesh triangles at a hit: UVs (TEXCOORD_0, _1), interpolated shading normal,
-// normal map, and the textures of MAT_PBR materials. Compiled in only for scenes that need it
+// normal map, vertex colours (COLOR_0), and the textures of MAT_PBR materials. Compiled in only for scenes that need it
 // (HAS_VERTEX_ATTRIBUTES, HAS_TEXTURES, ...: lib/spec_constants.glsl). Included by pathtrace.comp.
 //
 // Buffers (host/render/texture_pack.h; declared in lib/bindings.glsl):
@@ -7,7 +7,8 @@
 //                           n2 | t0 | t1 | t2 (TEXCOORD_0 of the corners; flags: TriangleVertices::
 //                           kHas*; zeros for other primitives); after all of them, for triangles
 //                           with TEXCOORD_1 (ATTR_HAS_UV1), its corners (c0, c1) | (c2, 0, 0) at
-//                           texel uv1At;
+//                           texel uv1At; then for triangles with COLOR_0 (ATTR_HAS_COLOR), its
+//                           corners' RGBA as half floats at the texel in n0's w (vertexColor);
 //   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at
 //                           1 + MAT_TEX_TEXELS m (layout: shared/texture_record.h); texture headers
 //                           as in shared/texture_sample.h;
@@ -35,6 +36,20 @@ vec2 attributeUv1(vec4 a1, vec2 ab, vec2 fallback) {
     vec4 b0 = fetchF(uAttributes, at);
     vec4 b1 = fetchF(uAttributes, at + 1);
     return (1.0f - ab.x - ab.y) * b0.xy + ab.x * b0.zw + ab.y * b1.xy;
+}
+
+/// COLOR_0 (linear RGBA) at surface parameters ab of the primitive whose attribute record starts
+/// at texel base; white where it has none (ATTR_HAS_COLOR in flags) or in variants without
+/// HAS_VERTEX_COLORS. Its record: the corners' RGBA as half floats (host packVertexAttributes).
+vec4 vertexColor(int base, uint flags, vec2 ab) {
+    if (!HAS_VERTEX_COLORS || (flags & ATTR_HAS_COLOR) == 0u) return vec4(1.0f);
+    int at = int(texelFetch(uAttributes, base + 2).w);
+    uvec4 r0 = texelFetch(uAttributes, at);
+    uvec4 r1 = texelFetch(uAttributes, at + 1);
+    vec4 c0 = vec4(unpackHalf2x16(r0.x), unpackHalf2x16(r0.y));
+    vec4 c1 = vec4(unpackHalf2x16(r0.z), unpackHalf2x16(r0.w));
+    vec4 c2 = vec4(unpackHalf2x16(r1.x), unpackHalf2x16(r1.y));
+    return (1.0f - ab.x - ab.y) * c0 + ab.x * c1 + ab.y * c2;
 }
 
 /// Sample texture slot `slot` of the material record at `rec` at uv0 (TEXCOORD_0) or uv1
@@ -155,6 +170,8 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
             }
         }
     }
+    // glTF COLOR_0 multiplies the base colour (not glass a transmissionTexture made: becomeTransmitted).
+    if (HAS_VERTEX_COLORS && mtype == MAT_PBR && (floatBitsToUint(m.m0.w) & 15u) == MAT_PBR) m.m0.xyz *= vertexColor(base, flags, ab).xyz;
     if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
         vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;

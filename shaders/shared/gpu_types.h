@@ -60,13 +60,35 @@ struct GpuMaterial {
 const uint GPU_MATERIAL_TEXELS = 4u;
 
 // ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
-// x: primitive index (bits), y: probability of picking it in proportion to emitted power (0 for
-// an object that does not emit), z: alias-table threshold of column i (shared/light_pick.h),
-// w: bits of the alias index of column i. The uniform pick of the book has probability 1/count.
+// The lights buffer holds, in order: one GpuLight per sampled object (GpuFrame::counts.x of them:
+// the book's mixture picks among these), one GpuLight per punctual light (the power pick's alias
+// table spans both: GpuFrame::lightList.x entries), then one GpuPunctualLight record per punctual
+// light from texel GpuFrame::lightList.z on.
+// x: bits of the primitive index, or of LIGHT_PUNCTUAL_BIT | punctual light index; y: probability
+// of picking it in proportion to emitted power (0 for an object that does not emit), z:
+// alias-table threshold of column i (shared/light_pick.h), w: bits of the alias index of column i.
+// The uniform pick of the book has probability 1/count.
 struct GpuLight {
     vec4 l0;
 };
 const uint GPU_LIGHT_TEXELS = 1u;
+
+// ---- Punctual lights (4 texels; shared/punctual_light.h) ---------------------------------------
+// q0.xyz: position (point, spot; world units, camera-relative) or the unit direction towards a
+//         directional light; q0.w: bits of the kind (PUNCTUAL_*)
+// q1.xyz: intensity (W/sr; directional: irradiance, W/m^2), linear RGB; q1.w: the spot's
+//         falloff scale (spotScale)
+// q2.xyz: the spot's unit axis (the way it points); q2.w: cos(outer cone angle)
+// q3: the pick among the punctual lights alone (the `bsdf` and `mixture` samplers, which sample
+//     delta lights by next-event estimation only): x = its probability, y = alias threshold,
+//     z = bits of the alias index, w = 0
+struct GpuPunctualLight {
+    vec4 q0;
+    vec4 q1;
+    vec4 q2;
+    vec4 q3;
+};
+const uint GPU_PUNCTUAL_TEXELS = 4u;
 
 // ---- Per-render uniform block (std140, vec4 members only) -------------------------------------
 // Camera of "Ray Tracing in One Weekend" sec. 13: pixel (i,j) centre = pixel00 + i du + j dv,
@@ -92,6 +114,9 @@ struct GpuFrame {
                       // radiance (a map or a non-zero background), else 0
     uvec4 envSize;    // x, y: width, height of the environment map (0: none, the constant
                       // background is the environment); z, w: 0
+    uvec4 lightList;  // x: entries of the power pick's alias table (sampled objects, then punctual
+                      // lights), y: punctual lights, z: texel of the first GpuPunctualLight in the
+                      // lights buffer, w: 0
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel

@@ -29,6 +29,16 @@ const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
 const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
 const uint MATF_EMITS = 64u;          // emit != 0
 
+// ---- Punctual lights (shared/punctual_light.h): the kind in GpuPunctualLight::q0.w ----------------
+const uint PUNCTUAL_POINT = 0u;
+const uint PUNCTUAL_SPOT = 1u;
+const uint PUNCTUAL_DIRECTIONAL = 2u;
+const uint PUNCTUAL_KIND_COUNT = 3u;
+// A light-list entry (GpuLight::l0.x) with this bit names punctual light (l0.x & ~bit), not a primitive.
+const uint LIGHT_PUNCTUAL_BIT = 0x80000000u;
+// The bit of the LIGHTS specialization constant for punctual lights (the others: PRIM_* kinds).
+const uint LIGHT_KIND_PUNCTUAL = PRIM_KIND_COUNT;
+
 // ---- How a diffuse vertex is sampled (specialization constant SAMPLER) -------------------------
 const uint SAMPLER_BSDF = 0u;     // BSDF sampling only; emission counted where rays hit it
 const uint SAMPLER_LIGHT = 1u;    // next-event estimation: one light sample + shadow ray per vertex
@@ -50,6 +60,7 @@ const uint ATTR_HAS_NORMAL = 1u;   // else shade with the geometric (flat) norma
 const uint ATTR_HAS_UV = 2u;       // TEXCOORD_0 (else UV = (0,0))
 const uint ATTR_HAS_TANGENT = 4u;  // from the file, or generated for a normal map
 const uint ATTR_HAS_UV1 = 8u;      // TEXCOORD_1: its 2-texel record at the texel in the record's second w
+const uint ATTR_HAS_COLOR = 16u;   // COLOR_0: its 2-texel record (half floats) at the texel in the record's third w
 
 VKP_END
 
@@ -57,8 +68,10 @@ VKP_END
 namespace vkp::gpu {
 /// Names of the kinds above, indexed by their value (variant names, messages).
 inline constexpr const char* kPrimKindNames[] = {"sphere", "quad", "triangle", "instance"};
+inline constexpr const char* kPunctualKindNames[] = {"point", "spot", "directional"};
 inline constexpr const char* kMaterialTypeNames[] = {"lambertian", "metal", "dielectric", "diffuse_light", "pbr"};
 static_assert(sizeof(kPrimKindNames) / sizeof(kPrimKindNames[0]) == PRIM_KIND_COUNT, "a name per primitive kind");
+static_assert(sizeof(kPunctualKindNames) / sizeof(kPunctualKindNames[0]) == PUNCTUAL_KIND_COUNT, "a name per punctual kind");
 static_assert(sizeof(kMaterialTypeNames) / sizeof(kMaterialTypeNames[0]) == MAT_TYPE_COUNT, "a name per material type");
 }  // namespace vkp::gpu
 #endif

@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "file_frame.h"
+#include "gpu_env.h"
 #include "image_checks.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
@@ -215,6 +217,77 @@ inline std::vector<Sampler> samplersUnderTest() {
         if (parseSampler(name, s)) out.push_back(s);
     }
     return out;
+}
+
+/// z-tests of a 16 x 16 render of planeScene against expected radiance / albedo per pixel (row
+/// major) times rho, per channel: the whole image (printed when printImage) and every block x block
+/// square: 3 x (1 + (16 / block)^2) z-tests.
+inline void expectPlanePixels(const PixelStats& st, glm::dvec3 rho, const std::vector<double>& expected, const std::string& name,
+                              std::uint32_t block, bool printImage) {
+    for (int c = 0; c < 3; ++c) {
+        auto expect = [&](const std::vector<Pixel>& px) {
+            double sum = 0;
+            for (const Pixel& p : px) sum += rho[c] * expected[p.y * 16 + p.x];
+            return sum / double(px.size());
+        };
+        const auto all = rect(0, 0, 16, 16);
+        EXPECT_TRUE(withinNoise(average(st, all, c), expect(all), name + ", image, " + kChannel[c], printImage));
+        for (std::uint32_t by = 0; by < 16; by += block)
+            for (std::uint32_t bx = 0; bx < 16; bx += block) {
+                const auto px = rect(bx, by, bx + block, by + block);
+                EXPECT_TRUE(withinNoise(average(st, px, c), expect(px),
+                                        name + ", block " + std::to_string(bx) + "," + std::to_string(by) + ", " + kChannel[c]));
+            }
+    }
+}
+
+/// Radiance of the "lamp" material of planeScene.
+constexpr double kLampL = 10.0;
+
+/// A large lambertian plane z = 0 of albedo (0.2, 0.5, 0.8) ("plane"), the objects `lights` (JSON,
+/// comma-separated; the material "lamp" emits kLampL from its front) and a camera 100 units above
+/// the origin seeing [-2, 2]^2 at 16 x 16; max_depth 2, black background: each pixel is the
+/// direct light on the plane.
+inline Scene planeScene(const std::string& lights, std::uint32_t seed) {
+    Scene s = parseSceneJson(R"({
+      "camera": {"lookfrom": [0, 0, 100], "lookat": [0, 0, 0], "vup": [0, 1, 0], "vfov": 2.2913, "width": 16, "height": 16},
+      "render": {"max_depth": 2, "background": [0, 0, 0]},
+      "materials": {"plane": {"type": "lambertian", "albedo": [0.2, 0.5, 0.8]},
+                    "lamp": {"type": "diffuse_light", "emit": [10, 10, 10]},
+                    "black": {"type": "lambertian", "albedo": [0, 0, 0]}},
+      "objects": [{"type": "quad", "Q": [-50, -50, 0], "u": [100, 0, 0], "v": [0, 100, 0], "material": "plane"},
+                  )" + lights + R"(]})",
+                             "plane-direct.json");
+    s.render.seed = seed;
+    return s;
+}
+
+/// Renders planeScene(lights) with every sampler (samplersUnderTest; 1024 spp, bsdf 4096) and
+/// z-tests the image and its 16 blocks of 4 x 4 pixels, per channel, against (rho / pi) times
+/// the irradiance E(x) (W/m^2, in file coordinates) averaged over each pixel's footprint
+/// (footprintMean): 3 x 17 z-tests per sampler. E must be smooth on the scale of a pixel.
+inline void checkPlane(VulkanDevice& dev, const std::string& lightJson, const std::string& lightName,
+                       const std::function<double(glm::dvec3)>& irradiance) {
+    const glm::dvec3 rho(0.2, 0.5, 0.8);
+    Scene scene = planeScene(lightJson, 1);
+    gpu::GpuFrame f{};
+    packFileFrameCamera(scene, f);
+    std::vector<double> expected(16 * 16);
+    double eMin = 1e30, eMax = 0;
+    for (std::uint32_t j = 0; j < 16; ++j)
+        for (std::uint32_t i = 0; i < 16; ++i) {
+            expected[j * 16 + i] = footprintMean(f, i, j, irradiance) / kPi;
+            eMin = std::min(eMin, expected[j * 16 + i]);
+            eMax = std::max(eMax, expected[j * 16 + i]);
+        }
+    std::printf("%s: expected pixel radiance / albedo in [%.4f, %.4f]\n", lightName.c_str(), eMin, eMax);
+    ASSERT_GT(eMin, 0.0);
+    for (Sampler s : samplersUnderTest()) {
+        scene.render.seed = 20 + std::uint32_t(s);
+        const std::uint32_t spp = s == Sampler::Bsdf ? 4096 : 1024;
+        const PixelStats st(renderSums(dev, scene, s, spp, lightName));
+        expectPlanePixels(st, rho, expected, std::string(samplerName(s)) + " " + lightName, 4, true);
+    }
 }
 
 }  // namespace vkp::test

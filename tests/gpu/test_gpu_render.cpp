@@ -331,7 +331,8 @@ TEST(GpuRender, SamplersAgreeOnCornellBook3) {
 // Every shipped scene, every sampler: no NaN/Inf sample and no path cut by the loop guard.
 TEST(GpuRender, NoNonFiniteSamplesOnShippedScenes) {
     VKP_REQUIRE_DEVICE(dev);
-    for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "cornell-biglight.json", "spheres-book1.json", "env-sky.json"}) {
+    for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "cornell-biglight.json", "spheres-book1.json", "env-sky.json",
+                             "lamps.json"}) {
         for (Sampler s : kAllSamplers) {
             TestRender r = makeRender(dev, scenesDir() / name, 32, 24, s);
             r.renderer->addSamples(8);
@@ -353,7 +354,7 @@ namespace {
 // the same samples as the pipeline with every feature compiled in.
 TEST(GpuRender, SceneVariantMatchesFullVariant) {
     VKP_REQUIRE_DEVICE(dev);
-    for (const char* name : {"cornell-book3.json", "spheres-book1.json"}) {
+    for (const char* name : {"cornell-book3.json", "spheres-book1.json", "lamps.json"}) {
         Scene scene = loadSceneJson(scenesDir() / name);
         scene.camera.width = 24;
         scene.camera.height = 16;

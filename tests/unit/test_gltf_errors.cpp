@@ -111,6 +111,16 @@ void expectError(const std::filesystem::path& file, const std::string& fragment,
     }
 }
 
+/// The base triangle with light `light` (named "l", KHR_lights_punctual) placed by a second node
+/// ("lamp") that refers to it by `index` (any JSON value).
+void withLight(Json& d, Json light, const Json& index) {
+    light["name"] = "l";
+    d["extensionsUsed"] = {"KHR_lights_punctual"};
+    d["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({light});
+    d["nodes"].push_back({{"name", "lamp"}, {"translation", {0, 2, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", index}}}}}});
+    d["scenes"][0]["nodes"].push_back(1);
+}
+
 /// A data URI holding the 12-byte KTX2 file identifier (what a KHR_texture_basisu image starts with).
 const char* const kKtx2Uri = "data:application/octet-stream;base64,q0tUWCAyMLsNChoK";
 
@@ -305,6 +315,41 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
          "image 0: bufferView 3 (bytes 40 + 1000) is outside buffer 0 (80 bytes)", true},
         {"glb_buffer_longer_than_chunk", [](Json& d, Bytes&) { d["buffers"][0]["byteLength"] = 84; },
          "(document): invalid glTF: Invalid `byteLength'", true},
+        {"color_not_normalized", [](Json& d, Bytes&) {
+             d["accessors"].push_back({{"bufferView", 0}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
+             d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3; },
+         "accessor 3 (COLOR_0 of mesh 0 (\"tri\") primitive 0): integer colours must be normalized"},
+        {"color_vec2", [](Json& d, Bytes&) {
+             d["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+             d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3; },
+         "accessor 3 (COLOR_0 of mesh 0 (\"tri\") primitive 0): is not VEC3 or VEC4"},
+        // KHR_lights_punctual: the light and the node that places it.
+        {"light_index_missing", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point"})"), 3); },
+         "node 1 (\"lamp\")/extensions/KHR_lights_punctual/light: light 3 does not exist (the file has 1 lights)"},
+        {"light_index_fraction", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point"})"), 0.5); },
+         "node 1 (\"lamp\")/extensions/KHR_lights_punctual/light: light 0.5 does not exist"},
+        {"light_index_string", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point"})"), "0"); },
+         "node 1 (\"lamp\")/extensions/KHR_lights_punctual/light: must be the index of a light"},
+        {"light_type", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "area"})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/type: \"area\" is not a light type (point, spot or directional)"},
+        {"light_intensity_negative", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point", "intensity": -1})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/intensity: must be finite and >= 0"},
+        {"light_color_short", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point", "color": [1, 1]})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/color: must have 3 numbers (got 2)"},
+        {"light_color_negative", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point", "color": [1, -1, 1]})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/color/1: must be finite and >= 0"},
+        {"spot_without_spot", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "spot"})"), 0); },
+         "(document): invalid glTF: Spot light description not found"},
+        {"spot_outer_wide", [](Json& d, Bytes&) {
+             withLight(d, Json::parse(R"({"type": "spot", "spot": {"outerConeAngle": 2}})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/spot/outerConeAngle: must be in (0, pi/2]"},
+        {"spot_inner_outer", [](Json& d, Bytes&) {
+             withLight(d, Json::parse(R"({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.5}})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/spot/innerConeAngle: must be >= 0 and less than outerConeAngle"},
+        {"spot_node_flattened", [](Json& d, Bytes&) {
+             withLight(d, Json::parse(R"({"type": "spot", "spot": {}})"), 0);
+             d["nodes"][1]["scale"] = {1, 1, 0}; },
+         "KHR_lights_punctual light 0 (\"l\") of node 1 (\"lamp\"): its direction is zero or not finite"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
@@ -344,14 +389,16 @@ TEST(GltfErrors, BasisuTextureWithAPngFallbackUsesThePng) {
         << s.warnings[0];
 }
 
-// Vertex colours are not rendered yet: one warning per mesh, naming its primitive, not silence.
-TEST(GltfErrors, VertexColoursAreAWarningNotSilence) {
+// COLOR_0 is read: no warning; the POSITION accessor as colours (float VEC3: alpha 1, negative
+// values clamped to 0).
+TEST(GltfErrors, VertexColoursAreReadWithoutAWarning) {
     const Scene s = loadSceneGltf(writeCase({"color0", [](Json& d, Bytes&) {
         d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;  // a float VEC3 accessor
     }, ""}));
-    ASSERT_EQ(s.warnings.size(), 1u);
-    EXPECT_NE(s.warnings[0].find("color0.gltf: mesh 0 (\"tri\") primitive 0: COLOR_0 (vertex colours) is not rendered"),
-              std::string::npos) << s.warnings[0];
+    EXPECT_TRUE(s.warnings.empty());
+    ASSERT_EQ(s.vertices.color.size(), 3u);
+    EXPECT_EQ(s.vertices.color[1], glm::vec4(1, 0, 0, 1));
+    EXPECT_TRUE(s.triangleVertices.at(0).flags & TriangleVertices::kHasColor);
 }
 
 TEST(GltfErrors, BrokenContainersAndFiles) {

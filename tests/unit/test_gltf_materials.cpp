@@ -287,4 +287,19 @@ TEST(GltfEmissive, GlbWithEmbeddedImageAndSingleAndDoubleSidedLights) {
     EXPECT_EQ(s.camera.height, 341u);
 }
 
+// KHR_materials_unlit: an emitter of the base colour that reflects nothing (docs/gltf.md).
+TEST(GltfMaterials, UnlitEmitsItsBaseColour) {
+    const Scene s = loadSceneGltf(gltfScene("unlit.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+    ASSERT_EQ(s.materials.size(), 1u);
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.pbr.unlit);
+    EXPECT_EQ(m.emit, glm::vec3(0.2f, 0.4f, 0.6f));
+    const Material k = kernelMaterial(m);
+    EXPECT_EQ(k.type, MaterialType::DiffuseLight);
+    EXPECT_FALSE(k.twoSided);
+    EXPECT_EQ(k.emit, glm::vec3(0.2f, 0.4f, 0.6f));
+    EXPECT_EQ(s.lights.size(), 4u);
+}
+
 }  // namespace

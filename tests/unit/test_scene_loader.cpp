@@ -398,7 +398,7 @@ TEST(SceneLoader, ReadmeExampleLoads) {
     std::stringstream text;
     text << in.rdbuf();
     const std::string readme = text.str();
-    const std::size_t begin = readme.find("```json\n");
+    const std::size_t begin = readme.find("```json\n", readme.find("## A complete example"));
     ASSERT_NE(begin, std::string::npos);
     const std::size_t end = readme.find("```", begin + 8);
     ASSERT_NE(end, std::string::npos);

@@ -5,6 +5,9 @@
 #include <bit>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
+#include "bvh/two_level.h"
 #include "render/features.h"
 #include "render/texture_pack.h"
 #include "shared/kernel_interface.h"
@@ -55,6 +58,36 @@ TEST(TexturePack, SpecularTexturesFillTheirSlotsAndTheirVariant) {
     EXPECT_EQ(on[VKP_SPEC_HAS_EXTENSION_TEXTURES], 1u);
     EXPECT_EQ(sceneFeatures(texturesScene()).specConstants().at(VKP_SPEC_HAS_EXTENSION_TEXTURES), 0u);
     EXPECT_NE(sceneFeatures(scene).name().find(" extension-textures"), std::string::npos);
+}
+
+// COLOR_0: each triangle's record points (n0's w) at its two texels of half floats, which hold its
+// corners' colours; the variant compiles the lookup in for this scene only.
+TEST(TexturePack, VertexColoursGetTheirOwnRecords) {
+    const Scene scene = loadSceneGltf(test::scenesDir() / "gltf" / "vertex-colors.gltf");
+    const FlatBvh bvh = buildSceneBvh(scene);
+    const std::vector<glm::uvec4> attrs = packVertexAttributes(scene, bvh);
+    std::size_t records = 0;
+    for (std::size_t i = 0; i < bvh.primToShape.size(); ++i) {
+        const Shape& s = scene.shapes.at(bvh.primToShape[i]);
+        const TriangleVertices& tv = scene.triangleVertices.at(s.attributes);
+        const glm::uvec4* rec = &attrs[i * kAttributeTexels];
+        ASSERT_TRUE(rec[1].z & gpu::ATTR_HAS_COLOR) << "primitive " << i;
+        const std::uint32_t at = rec[2].w;
+        ASSERT_GE(at, bvh.primToShape.size() * kAttributeTexels);
+        ASSERT_LT(at + 1, attrs.size());
+        for (int k = 0; k < 3; ++k) {
+            const glm::uvec4& t = attrs[at + std::size_t(k / 2)];
+            const std::uint32_t rg = (k % 2 == 0) ? t.x : t.z, ba = (k % 2 == 0) ? t.y : t.w;
+            const glm::vec4 got(glm::unpackHalf2x16(rg), glm::unpackHalf2x16(ba));
+            const glm::vec4 want = scene.vertices.color.at(tv.v[k]);
+            for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[c], want[c], 1e-3f * std::max(1.0f, want[c])) << "primitive " << i << " corner " << k;
+        }
+        ++records;
+    }
+    EXPECT_EQ(attrs.size(), bvh.primToShape.size() * kAttributeTexels + 2 * records);
+    EXPECT_TRUE(sceneFeatures(scene).vertexColors);
+    EXPECT_FALSE(sceneFeatures(texturesScene()).vertexColors);
+    EXPECT_NE(sceneFeatures(scene).name().find(" vertex-colors"), std::string::npos);
 }
 
 }  // namespace
