@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
 # With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh) and valgrind
-# (tools/instructions-per-sample.sh).
+# (tools/instructions-per-sample.sh); with --reference also Blender (the `reference` tests).
 # Idempotent: does nothing (and needs no network) when everything is already installed.
 set -euo pipefail
 packages=(
@@ -11,6 +11,8 @@ packages=(
 )
 # `tools/deps.sh --bench`: also what the benchmark suite needs (tools/bench.sh), not the tests.
 if [ "${1:-}" = "--bench" ]; then packages+=(python3-numpy python3-matplotlib valgrind); fi
+# `tools/deps.sh --reference`: Blender (Cycles) for the `reference` tests (tools/blender-reference.sh).
+if [ "${1:-}" = "--reference" ]; then packages+=(blender); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -10,7 +10,10 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <string_view>
 #include <system_error>
+
+#include <nlohmann/json.hpp>
 
 #include "core/errors.h"
 #include "scene/gltf_parts.h"
@@ -201,6 +204,35 @@ void checkNesting(const char* text, std::size_t n, const std::string& file) {
     }
 }
 
+/// KHR_lights_punctual's lights as tinygltf needs them (it refuses the others with a message that
+/// names no light): each an object with a string "type", and a spot with its "spot" object. Only
+/// for documents that mention the extension; invalid JSON is left to tinygltf to report.
+void checkLights(const char* text, std::size_t n, const std::string& file) {
+    const std::string_view view(text, n);
+    if (view.find("KHR_lights_punctual") == std::string_view::npos) return;
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(view);
+    } catch (const std::exception&) {
+        return;
+    }
+    if (!doc.is_object() || !doc.contains("extensions") || !doc["extensions"].is_object()) return;
+    const nlohmann::json& ext = doc["extensions"];
+    if (!ext.contains("KHR_lights_punctual")) return;
+    const nlohmann::json& khr = ext["KHR_lights_punctual"];
+    if (!khr.is_object()) fail(file, "extensions/KHR_lights_punctual", "must be an object");
+    if (!khr.contains("lights")) return;
+    if (!khr["lights"].is_array()) fail(file, "extensions/KHR_lights_punctual/lights", "must be an array");
+    for (std::size_t i = 0; i < khr["lights"].size(); ++i) {
+        const nlohmann::json& l = khr["lights"][i];
+        const std::string place = "KHR_lights_punctual light " + std::to_string(i);
+        if (!l.is_object()) fail(file, place, "must be an object");
+        if (!l.contains("type") || !l["type"].is_string()) fail(file, place + "/type", "must be a string (point, spot or directional)");
+        if (l["type"] == "spot" && (!l.contains("spot") || !l["spot"].is_object()))
+            fail(file, place + "/spot", "a spot light needs its \"spot\" object (the specification requires it)");
+    }
+}
+
 /// tinygltf's error text (possibly several lines) as one clause.
 std::string oneLine(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
@@ -259,10 +291,12 @@ Document readDocument(const std::filesystem::path& path) {
         if (binary) {
             const auto [at, n] = checkGlb(bytes, doc.file);
             checkNesting(bytes.data() + at, n, doc.file);
+            checkLights(bytes.data() + at, n, doc.file);
             ok = loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                              static_cast<unsigned int>(bytes.size()), base.string());
         } else {
             checkNesting(bytes.data(), bytes.size(), doc.file);
+            checkLights(bytes.data(), bytes.size(), doc.file);
             ok = loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(),
                                             static_cast<unsigned int>(bytes.size()), base.string());
         }

@@ -1,6 +1,7 @@
 // KHR_lights_punctual: the point, spot and directional lights of a glTF file, placed by the nodes
 // that carry them (https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_lights_punctual).
 // Photometric units in the file (candela, lux), radiometric in vkpath: divided by kLumensPerWatt.
+#include <algorithm>
 #include <cmath>
 
 #include "scene/gltf_parts.h"
@@ -45,9 +46,11 @@ PunctualLight convert(const Document& doc, std::size_t index, const std::string&
         constexpr double halfPi = 1.57079632679489662;
         if (!(outer > 0.0 && outer <= halfPi * (1.0 + 1e-7)))
             fail(doc.file, place + "/spot/outerConeAngle", "must be in (0, pi/2] (got " + std::to_string(outer) + ")");
-        if (!(inner >= 0.0 && inner < outer))
+        // The specification asks for inner < outer; Blender's exporter writes inner = outer for a
+        // spot without blend, so equal angles are accepted (a hard edge).
+        if (!(inner >= 0.0 && inner <= outer))
             fail(doc.file, place + "/spot/innerConeAngle",
-                 "must be >= 0 and less than outerConeAngle (got " + std::to_string(inner) + ")");
+                 "must be >= 0 and at most outerConeAngle (got " + std::to_string(inner) + ")");
         l.innerCone = float(inner);
         l.outerCone = float(std::min(outer, halfPi));
     }
@@ -69,7 +72,10 @@ void appendLights(const Document& doc, const Instances& inst, Scene& scene) {
         l.direction = (len > 0.0 && std::isfinite(len)) ? glm::vec3(axis / len) : glm::vec3(0.0f);
         if (const std::string problem = punctualLightProblem(l); !problem.empty()) fail(doc.file, l.name, problem);
         if (model.lights[li.light].range > 0.0 && !rangeWarned) {
-            scene.warnings.push_back(line(doc.file, place, "range ignored: vkpath's lights fall off with the inverse square of the distance only (docs/gltf.md)"));
+            // Once per file, also when a JSON scene includes the file several times.
+            const std::string w =
+                line(doc.file, place, "range ignored: vkpath's lights fall off with the inverse square of the distance only (docs/gltf.md)");
+            if (std::find(scene.warnings.begin(), scene.warnings.end(), w) == scene.warnings.end()) scene.warnings.push_back(w);
             rangeWarned = true;
         }
         scene.punctualLights.push_back(std::move(l));

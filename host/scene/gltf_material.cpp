@@ -279,6 +279,9 @@ Material MaterialMapper::convert(int m) {
         // path tracer: an emitter of radiance = base colour (x its texture, through the emissive
         // slot), reflecting nothing; the other properties are ignored, as the extension says.
         p.unlit = true;
+        if (p.alphaMode != AlphaMode::Opaque) {
+            scene_.warnings.push_back(line(f, place + "/alphaMode", "ignored for an unlit material (it renders as an emitter: docs/gltf.md)"));
+        }
         out.emit = glm::vec3(p.baseColor);
         p.emissiveTexture = p.baseColorTexture;
         p.metallic = 0.0f;

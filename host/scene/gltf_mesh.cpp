@@ -1,5 +1,6 @@
 // glTF mesh primitives -> world-space triangles (Shape), their vertex attributes and the light
 // list (glTF 2.0 sec. 3.7.2 "Meshes"). Strips and fans are converted to triangle lists.
+#include <algorithm>
 #include <cmath>
 
 #include "scene/gltf_parts.h"
@@ -239,7 +240,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
         }
     }
     // COLOR_0: float, or normalized unsigned byte / short, VEC3 or VEC4 (glTF 2.0 sec. 3.7.2.1); it
-    // multiplies the base colour (and its alpha). Negative floats are clamped to 0.
+    // multiplies the base colour (and its alpha). Floats are clamped to [0, 65504] (half-float range).
     if (const int index = attribute(p, "COLOR_0"); index >= 0) {
         const int type = std::size_t(index) < doc.model.accessors.size() ? doc.model.accessors[std::size_t(index)].type : 0;
         if (std::size_t(index) < doc.model.accessors.size() && type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
@@ -252,10 +253,17 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
                  "integer colours must be normalized (glTF 2.0 sec. 3.7.2.1)");
         }
         flags |= TriangleVertices::kHasColor;
+        if (const Material& m = scene.materials.at(material); kernelMaterial(m).type != MaterialType::Pbr) {
+            // Vertex colours tint the glTF BRDF only (docs/gltf.md): say so once per primitive and material.
+            const std::string w = line(doc.file, where, "COLOR_0 ignored: its material \"" + m.name + "\" renders as " +
+                                                            (m.emits() ? "an emitter" : "glass or a book material"));
+            if (std::find(scene.warnings.begin(), scene.warnings.end(), w) == scene.warnings.end()) scene.warnings.push_back(w);
+        }
         mv.color.resize(base, glm::vec4(1.0f));
         for (std::size_t i = 0; i < nv; ++i) {
             const float* c = &colors[std::size_t(components) * i];
-            mv.color.emplace_back(std::max(c[0], 0.0f), std::max(c[1], 0.0f), std::max(c[2], 0.0f),
+            constexpr float kHalfMax = 65504.0f;  // the device keeps colours as half floats
+            mv.color.emplace_back(std::clamp(c[0], 0.0f, kHalfMax), std::clamp(c[1], 0.0f, kHalfMax), std::clamp(c[2], 0.0f, kHalfMax),
                                   components == 4 ? std::clamp(c[3], 0.0f, 1.0f) : 1.0f);
         }
     } else if (!mv.color.empty()) {

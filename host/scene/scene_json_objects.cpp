@@ -198,7 +198,7 @@ PunctualLight readPunctual(const json::Value& v, const Scene& scene) {
             const float outer = o.number("outer_angle", json::Range::closed(0.0, 90.0), 45.0f);
             if (!(outer > 0.0f)) o.required("outer_angle").fail("must be > 0");
             const float inner = o.number("inner_angle", json::Range::closed(0.0, 90.0), 0.0f);
-            if (!(inner < outer)) o.required("inner_angle").fail("must be less than outer_angle (" + std::to_string(outer) + ")");
+            if (!(inner <= outer)) o.required("inner_angle").fail("must be at most outer_angle (" + std::to_string(outer) + ")");
             l.outerCone = float(double(outer) * pi / 180.0);
             l.innerCone = float(double(inner) * pi / 180.0);
         }

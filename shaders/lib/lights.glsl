@@ -131,10 +131,12 @@ LightRay samplePunctual(uint k, vec3 x, vec3 xo) {
     r.shadowDir = ps.dir;
     r.shadowLength = VKP_FAR;
     if (floatBitsToUint(l.q0.w) != PUNCTUAL_DIRECTIONAL) {
-        vec3 s = vec3(l.q0.x, l.q0.y, l.q0.z) - xo;  // nothing to offset at the light's end
+        // Nothing to offset at the light's end; cut by 2^-14 of the length (as shadowRayTo does), so
+        // that a lamp placed exactly on a surface is not hidden by that surface's rounding.
+        vec3 s = vec3(l.q0.x, l.q0.y, l.q0.z) - xo;
         float len = length(s);
         r.shadowDir = (len > 0.0f) ? s / len : ps.dir;
-        r.shadowLength = len;
+        r.shadowLength = len * (1.0f - 1.0f / 16384.0f);
     }
     return r;
 }

@@ -339,13 +339,21 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
         {"light_color_negative", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "point", "color": [1, -1, 1]})"), 0); },
          "KHR_lights_punctual light 0 (\"l\")/color/1: must be finite and >= 0"},
         {"spot_without_spot", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "spot"})"), 0); },
-         "(document): invalid glTF: Spot light description not found"},
+         "KHR_lights_punctual light 0/spot: a spot light needs its \"spot\" object"},
+        {"spot_without_spot_glb", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"type": "spot"})"), 0); },
+         "KHR_lights_punctual light 0/spot: a spot light needs its \"spot\" object", true},
+        {"light_without_type", [](Json& d, Bytes&) { withLight(d, Json::parse(R"({"intensity": 2})"), 0); },
+         "KHR_lights_punctual light 0/type: must be a string"},
+        {"light_not_object", [](Json& d, Bytes&) {
+             withLight(d, Json::parse(R"({"type": "point"})"), 0);
+             d["extensions"]["KHR_lights_punctual"]["lights"][0] = 3; },
+         "KHR_lights_punctual light 0: must be an object"},
         {"spot_outer_wide", [](Json& d, Bytes&) {
              withLight(d, Json::parse(R"({"type": "spot", "spot": {"outerConeAngle": 2}})"), 0); },
          "KHR_lights_punctual light 0 (\"l\")/spot/outerConeAngle: must be in (0, pi/2]"},
         {"spot_inner_outer", [](Json& d, Bytes&) {
-             withLight(d, Json::parse(R"({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.5}})"), 0); },
-         "KHR_lights_punctual light 0 (\"l\")/spot/innerConeAngle: must be >= 0 and less than outerConeAngle"},
+             withLight(d, Json::parse(R"({"type": "spot", "spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.5}})"), 0); },
+         "KHR_lights_punctual light 0 (\"l\")/spot/innerConeAngle: must be >= 0 and at most outerConeAngle"},
         {"spot_node_flattened", [](Json& d, Bytes&) {
              withLight(d, Json::parse(R"({"type": "spot", "spot": {}})"), 0);
              d["nodes"][1]["scale"] = {1, 1, 0}; },
@@ -399,6 +407,21 @@ TEST(GltfErrors, VertexColoursAreReadWithoutAWarning) {
     ASSERT_EQ(s.vertices.color.size(), 3u);
     EXPECT_EQ(s.vertices.color[1], glm::vec4(1, 0, 0, 1));
     EXPECT_TRUE(s.triangleVertices.at(0).flags & TriangleVertices::kHasColor);
+}
+
+// An unlit material renders as an emitter: its alphaMode and the COLOR_0 of its meshes are ignored,
+// each with one warning naming the place, not silently.
+TEST(GltfErrors, WhatAnUnlitMaterialIgnoresIsAWarning) {
+    const Scene s = loadSceneGltf(writeCase({"unlit_mask", [](Json& d, Bytes&) {
+        d["extensionsUsed"] = {"KHR_materials_unlit"};
+        d["materials"] = Json::parse(R"([{"name": "u", "alphaMode": "MASK", "extensions": {"KHR_materials_unlit": {}}}])");
+        d["meshes"][0]["primitives"][0]["material"] = 0;
+        d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;
+    }, ""}));
+    ASSERT_EQ(s.warnings.size(), 2u);
+    EXPECT_NE(s.warnings[0].find("material 0 (\"u\")/alphaMode: ignored for an unlit material"), std::string::npos) << s.warnings[0];
+    EXPECT_NE(s.warnings[1].find("mesh 0 (\"tri\") primitive 0: COLOR_0 ignored: its material \"u\" renders as an emitter"),
+              std::string::npos) << s.warnings[1];
 }
 
 TEST(GltfErrors, BrokenContainersAndFiles) {

@@ -107,7 +107,7 @@ std::vector<Case> cases() {
          "/objects/0/direction", "missing required key"},
         {"spot_light_inner_outer",
          withObject(R"({"type":"spot_light","position":[0,2,0],"direction":[0,-1,0],"intensity":[1,1,1],"inner_angle":30,"outer_angle":20})"),
-         "/objects/0/inner_angle", "must be less than outer_angle"},
+         "/objects/0/inner_angle", "must be at most outer_angle"},
         {"spot_light_outer_zero",
          withObject(R"({"type":"spot_light","position":[0,2,0],"direction":[0,-1,0],"intensity":[1,1,1],"outer_angle":0})"),
          "/objects/0/outer_angle", "must be > 0"},

@@ -1,0 +1,106 @@
+// Lamps against Cycles (label gpu; with Blender, label reference): scenes/blender-lamps, a floor of
+// albedo 0.8 lit by a 60 W point lamp, a 400 W spot (size 50 degrees, blend 0.3) and a 0.5 W/m^2
+// sun, built, exported to glTF and rendered with Cycles (4096 spp, 64 x 64, pure Diffuse floor) by
+// Debian's Blender 3.4 with tools/blender/lamps.py. vkpath renders the exported file (the floor's
+// specular layer off: the same Lambertian BRDF) and must agree with Cycles' image within 3 %:
+//  - in every 8 x 8 block the spot does not reach (more than 28 degrees off its axis: point lamp
+//    and sun only);
+//  - in the spot's core (less than 12 degrees off its axis), where both renderers give the spot its
+//    full intensity (Cycles 3.4 also scales it by the cosine off the axis: at most 2.2 % there).
+// Between 12 and 28 degrees they differ by design: glTF's falloff starts at the inner cone angle
+// that Blender's exporter writes, outer x (1 - blend) = 17.5 degrees, quadratic in the cosine;
+// Cycles' smoothstep starts at 20.9 degrees. docs/gltf.md records the numbers.
+// VKPATH_BLENDER_LAMPS=DIR compares a fresh export and render instead (tools/blender-reference.sh).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "core/image_io.h"
+#include "gpu_env.h"
+#include "image_checks.h"
+#include "render/gpu_scene.h"
+#include "scene/gltf.h"
+#include "test_gpu_analytic_common.h"
+#include "test_paths.h"
+
+namespace vkp::test {
+namespace {
+
+constexpr double kTolerance = 0.03;
+
+std::filesystem::path lampsDir() {
+    const char* dir = std::getenv("VKPATH_BLENDER_LAMPS");
+    return dir && *dir ? std::filesystem::path(dir) : scenesDir() / "blender-lamps";
+}
+
+TEST(GpuBlenderLamps, PointSpotAndSunAgreeWithCycles) {
+    VKP_REQUIRE_DEVICE(dev);
+    const std::filesystem::path dir = lampsDir();
+    std::printf("Blender files from %s\n", dir.string().c_str());
+    const Image cycles = readImage(dir / "cycles.exr");
+    Scene scene = loadSceneGltf(dir / "lamps.gltf");
+    ASSERT_EQ(scene.punctualLights.size(), 3u);
+    for (Material& m : scene.materials) m.pbr.specular = 0.0f;  // Cycles renders a pure Diffuse BSDF
+    scene.camera.width = cycles.width;
+    scene.camera.height = cycles.height;
+    scene.render.maxDepth = 8;
+    const PixelStats st(renderSums(dev, scene, Sampler::Mis, 1024, "blender lamps"));
+    ASSERT_TRUE(litAndNotConstant(st.mean, "vkpath"));
+    ASSERT_TRUE(litAndNotConstant(cycles, "Cycles"));
+
+    // Where each pixel's centre meets the floor (camera-relative: the floor is the file's y = 0),
+    // and its angle from the spot's axis.
+    const PunctualLight* spot = nullptr;
+    for (const PunctualLight& l : scene.punctualLights)
+        if (l.kind == PunctualLight::Kind::Spot) spot = &l;
+    ASSERT_NE(spot, nullptr);
+    gpu::GpuFrame f{};
+    packCamera(scene.camera, f);
+    const double floorY = -scene.origin.y;
+    auto spotAngle = [&](std::uint32_t i, std::uint32_t j) {
+        const glm::dvec3 o(f.origin), d = glm::dvec3(f.pixel00) + double(i) * glm::dvec3(f.pixelDu) + double(j) * glm::dvec3(f.pixelDv) - o;
+        const glm::dvec3 p = o + d * ((floorY - o.y) / d.y);
+        const glm::dvec3 toP = glm::normalize(p - glm::dvec3(spot->position));
+        return std::acos(std::clamp(glm::dot(toP, glm::dvec3(spot->direction)), -1.0, 1.0)) * 180.0 / kPi;
+    };
+    auto ratio = [&](const std::vector<Pixel>& px, int c) {
+        double a = 0, b = 0;
+        for (const Pixel& p : px) {
+            a += st.mean.at(p.x, p.y, c);
+            b += cycles.at(p.x, p.y, c);
+        }
+        return a / b;
+    };
+    int blocks = 0;
+    double worst = 0.0;
+    for (std::uint32_t by = 0; by + 8 <= cycles.height; by += 8)
+        for (std::uint32_t bx = 0; bx + 8 <= cycles.width; bx += 8) {
+            bool far = true;
+            for (std::uint32_t j = by; j < by + 8; ++j)
+                for (std::uint32_t i = bx; i < bx + 8; ++i) far = far && spotAngle(i, j) > 28.0;
+            if (!far) continue;
+            ++blocks;
+            for (int c = 0; c < 3; ++c) {
+                const double r = ratio(rect(bx, by, bx + 8, by + 8), c);
+                worst = std::max(worst, std::abs(r - 1.0));
+                EXPECT_NEAR(r, 1.0, kTolerance) << "block " << bx << "," << by << " channel " << kChannel[c];
+            }
+        }
+    std::printf("%d blocks beyond the spot: largest |vkpath / Cycles - 1| = %.4f\n", blocks, worst);
+    EXPECT_GE(blocks, 30);
+    std::vector<Pixel> core;
+    for (std::uint32_t j = 0; j < cycles.height; ++j)
+        for (std::uint32_t i = 0; i < cycles.width; ++i)
+            if (spotAngle(i, j) < 12.0) core.push_back({i, j});
+    ASSERT_GE(core.size(), 16u);
+    const double r = ratio(core, 1);
+    std::printf("spot core (%zu pixels within 12 degrees of its axis): vkpath / Cycles = %.4f\n", core.size(), r);
+    EXPECT_NEAR(r, 1.0, kTolerance);
+}
+
+}  // namespace
+}  // namespace vkp::test

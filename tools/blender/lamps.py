@@ -1,0 +1,85 @@
+# Blender script (run by tools/blender-reference.sh; Debian's Blender 3.4): a floor of albedo 0.8
+# lit by a point lamp, a spot lamp and a sun, exported to glTF (KHR_lights_punctual, as Blender's
+# exporter writes lamps) and rendered with Cycles to a linear EXR, for tests/gpu/test_gpu_blender_lamps.cpp.
+#   blender -b --factory-startup --python tools/blender/lamps.py -- OUT.gltf OUT.exr SIZE SPP
+# The exported file keeps Principled (base 0.8, roughness 1, specular 0); Cycles renders the floor
+# with a pure Diffuse BSDF of the same colour (vkpath's test gives the glTF material
+# KHR_materials_specular 0, the same Lambertian BRDF). Lamps are points (radius 0) and the sun a
+# direction (angle 0), as glTF's punctual lights are; black world; no denoising.
+import math
+import sys
+
+import bpy
+
+out_gltf, out_exr, size, spp = sys.argv[sys.argv.index("--") + 1:][:4]
+size, spp = int(size), int(spp)
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+scene = bpy.context.scene
+
+bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0.0, 0.0, 0.0))
+floor = bpy.context.active_object
+mat = bpy.data.materials.new("floor")
+mat.use_nodes = True
+bsdf = mat.node_tree.nodes["Principled BSDF"]
+bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+bsdf.inputs["Roughness"].default_value = 1.0
+bsdf.inputs["Specular"].default_value = 0.0
+bsdf.inputs["Metallic"].default_value = 0.0
+floor.data.materials.append(mat)
+
+
+def lamp(name, kind, energy, location, rotation=(0.0, 0.0, 0.0), **props):
+    data = bpy.data.lights.new(name, kind)
+    data.energy = energy
+    for k, v in props.items():
+        setattr(data, k, v)
+    obj = bpy.data.objects.new(name, data)
+    obj.location = location
+    obj.rotation_euler = rotation
+    scene.collection.objects.link(obj)
+    return obj
+
+
+# Blender is +Z up; the exporter turns it to glTF's +Y up.
+lamp("point", "POINT", 60.0, (-3.0, 2.0, 2.0), shadow_soft_size=0.0)
+lamp("spot", "SPOT", 400.0, (3.0, -1.0, 3.0), (math.radians(15.0), 0.0, 0.0), shadow_soft_size=0.0,
+     spot_size=math.radians(50.0), spot_blend=0.3)
+lamp("sun", "SUN", 0.5, (0.0, 0.0, 10.0), (math.radians(35.0), 0.0, math.radians(20.0)), angle=0.0)
+
+cam_data = bpy.data.cameras.new("camera")
+cam_data.angle = math.radians(60.0)
+cam = bpy.data.objects.new("camera", cam_data)
+cam.location = (0.0, 0.0, 9.0)  # straight down at the floor
+scene.collection.objects.link(cam)
+scene.camera = cam
+
+world = bpy.data.worlds.new("black")
+world.use_nodes = False
+world.color = (0.0, 0.0, 0.0)
+scene.world = world
+
+scene.render.resolution_x = size  # before the export: the camera's aspectRatio
+scene.render.resolution_y = size
+scene.render.resolution_percentage = 100
+bpy.ops.export_scene.gltf(filepath=out_gltf, export_format="GLTF_SEPARATE", export_lights=True, export_cameras=True)
+
+# Cycles renders the floor as a pure Diffuse BSDF (what vkpath renders with specular 0).
+nodes = mat.node_tree.nodes
+diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+diffuse.inputs["Roughness"].default_value = 0.0
+mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+
+scene.render.engine = "CYCLES"
+scene.cycles.device = "CPU"
+scene.cycles.samples = spp
+scene.cycles.use_denoising = False
+scene.cycles.use_adaptive_sampling = False
+scene.cycles.seed = 1
+scene.render.film_transparent = False
+scene.view_settings.view_transform = "Standard"
+scene.render.image_settings.file_format = "OPEN_EXR"
+scene.render.image_settings.color_depth = "32"
+scene.render.filepath = out_exr
+bpy.ops.render.render(write_still=True)
