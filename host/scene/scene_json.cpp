@@ -26,7 +26,8 @@ Camera readCamera(const json::Value& v, glm::dvec3& origin) {
     origin = o.dvec3("lookfrom");
     const glm::dvec3 lookat = o.dvec3("lookat");
     c.lookfrom = glm::vec3(0.0f);
-    c.vup = o.vec3("vup");
+    const bool vupGiven = o.has("vup");
+    c.vup = o.vec3("vup", Range::any(), glm::vec3(0.0f, 1.0f, 0.0f));  // +y up unless given
     c.vfov = o.number("vfov", Range::open(0.0, 180.0));
     c.width = o.uint32("width", 1, kMaxImageSide);
     c.height = o.uint32("height", 1, kMaxImageSide);
@@ -41,6 +42,7 @@ Camera readCamera(const json::Value& v, glm::dvec3& origin) {
     }
     if (c.vup == glm::vec3(0.0f)) o.required("vup").fail("must not be zero");
     if (parallelOrZero(c.vup, glm::vec3(view))) {
+        if (!vupGiven) o.fail("the view direction lookat - lookfrom is vertical: give \"vup\" (default [0, 1, 0])");
         o.required("vup").fail("must not be parallel to the view direction lookat - lookfrom");
     }
     c.focusDist = o.number("focus_dist", Range::above(0.0), static_cast<float>(dist));

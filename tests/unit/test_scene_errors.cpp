@@ -94,6 +94,8 @@ std::vector<Case> cases() {
         {"focus_zero", cameraWith("focus_dist", "0"), "/camera/focus_dist", "must be > 0 (got 0)"},
         {"lookat_is_lookfrom", cameraWith("lookat", "[0,0,5]"), "/camera/lookat", "must differ from lookfrom"},
         {"vup_zero", cameraWith("vup", "[0,0,0]"), "/camera/vup", "must not be zero"},
+        {"vup_default_vertical", withCamera(R"({"lookfrom":[0,5,0],"lookat":[0,0,0],"vfov":40,"width":8,"height":8})"), "/camera",
+         "the view direction lookat - lookfrom is vertical: give \"vup\""},
         // Punctual lights.
         {"point_light_no_intensity", withObject(R"({"type":"point_light","position":[0,2,0]})"), "/objects/0",
          "a point_light needs \"intensity\" (W/sr) or \"power\" (W)"},

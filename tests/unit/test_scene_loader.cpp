@@ -119,6 +119,13 @@ TEST(SceneLoader, CornellBook3) {
     expectNear(bottom.p2, {165 * sn, 0, 165 * c}, 1e-3f);
 }
 
+TEST(SceneLoader, VupDefaultsToPlusY) {
+    const Scene s = vkp::parseSceneJson(R"({"camera": {"lookfrom": [0, 1, 5], "lookat": [0, 0, 0], "vfov": 40, "width": 8, "height": 8},
+                                            "objects": []})",
+                                        "vup.json");
+    EXPECT_EQ(s.camera.vup, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
 TEST(SceneLoader, CornellClassic) {
     const Scene s = vkp::test::inFileFrame(vkp::loadSceneJson(vkp::test::scenesDir() / "cornell-classic.json"));
     ASSERT_EQ(s.shapes.size(), 18u);  // 5 walls + light + 2 boxes
