@@ -3,8 +3,10 @@
 # installs it): builds the scene in Blender, exports it to glTF as Blender's exporter writes it, and
 # renders it with Cycles (tools/blender/lamps.py). Usage:
 #   tools/blender-reference.sh DIR [SIZE SPP]     (default 64 4096; about 15 s on 2 cores)
-# writes DIR/lamps.gltf, DIR/lamps.bin and DIR/cycles.exr. The committed copy is scenes/blender-lamps
-# (tools/blender-reference.sh scenes/blender-lamps); the `reference` test renders a fresh one.
+# writes DIR/lamps.gltf, lamps.bin and cycles.exr (tools/blender/lamps.py), and
+# DIR/vertex-colors.gltf, vertex-colors.bin and cycles-vertex-colors.exr (tools/blender/vertex_colors.py,
+# 32 x 32, 1024 spp). The committed copy is scenes/blender-reference (tools/blender-reference.sh
+# scenes/blender-reference); the `reference` test renders a fresh one.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 dir=${1:?usage: tools/blender-reference.sh DIR [SIZE SPP]}
@@ -20,5 +22,11 @@ if ! blender -b --factory-startup --python-exit-code 1 --python "$root/tools/ble
   tail -5 "$log" >&2
   exit 1
 fi
+if ! blender -b --factory-startup --python-exit-code 1 --python "$root/tools/blender/vertex_colors.py" -- \
+     "$dir/vertex-colors.gltf" "$dir/cycles-vertex-colors.exr" 32 1024 >"$log" 2>&1; then
+  echo "blender-reference: Blender failed; its log: $log" >&2
+  tail -5 "$log" >&2
+  exit 1
+fi
 rm -f "$log"
-echo "blender-reference: wrote $dir/lamps.gltf, lamps.bin, cycles.exr (Blender $(blender --version 2>/dev/null | head -1 | cut -d' ' -f2))"
+echo "blender-reference: wrote $dir/lamps.gltf, lamps.bin, cycles.exr, vertex-colors.gltf, vertex-colors.bin, cycles-vertex-colors.exr (Blender $(blender --version 2>/dev/null | head -1 | cut -d' ' -f2))"

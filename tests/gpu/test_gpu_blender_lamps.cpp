@@ -1,4 +1,4 @@
-// Lamps against Cycles (label gpu; with Blender, label reference): scenes/blender-lamps, a floor of
+// Lamps against Cycles (label gpu; with Blender, label reference): scenes/blender-reference, a floor of
 // albedo 0.8 lit by a 60 W point lamp, a 400 W spot (size 50 degrees, blend 0.3) and a 0.5 W/m^2
 // sun, built, exported to glTF and rendered with Cycles (4096 spp, 64 x 64, pure Diffuse floor) by
 // Debian's Blender 3.4 with tools/blender/lamps.py. vkpath renders the exported file (the floor's
@@ -10,7 +10,8 @@
 // Between 12 and 28 degrees they differ by design: glTF's falloff starts at the inner cone angle
 // that Blender's exporter writes, outer x (1 - blend) = 17.5 degrees, quadratic in the cosine;
 // Cycles' smoothstep starts at 20.9 degrees. docs/gltf.md records the numbers.
-// VKPATH_BLENDER_LAMPS=DIR compares a fresh export and render instead (tools/blender-reference.sh).
+// A second test does the same for vertex colours (COLOR_0). VKPATH_BLENDER_REFERENCE=DIR compares a
+// fresh export and render instead (tools/blender-reference.sh).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,8 +34,8 @@ namespace {
 constexpr double kTolerance = 0.03;
 
 std::filesystem::path lampsDir() {
-    const char* dir = std::getenv("VKPATH_BLENDER_LAMPS");
-    return dir && *dir ? std::filesystem::path(dir) : scenesDir() / "blender-lamps";
+    const char* dir = std::getenv("VKPATH_BLENDER_REFERENCE");
+    return dir && *dir ? std::filesystem::path(dir) : scenesDir() / "blender-reference";
 }
 
 TEST(GpuBlenderLamps, PointSpotAndSunAgreeWithCycles) {
@@ -100,6 +101,37 @@ TEST(GpuBlenderLamps, PointSpotAndSunAgreeWithCycles) {
     const double r = ratio(core, 1);
     std::printf("spot core (%zu pixels within 12 degrees of its axis): vkpath / Cycles = %.4f\n", core.size(), r);
     EXPECT_NEAR(r, 1.0, kTolerance);
+}
+
+// COLOR_0 as Blender writes it: tools/blender/vertex_colors.py, a plane whose float colour attribute
+// (linear in x and y) is its base colour, in a white world; Cycles renders a Diffuse BSDF of that
+// colour, so each pixel is the interpolated colour. vkpath (background 1, specular off) must agree
+// within 3 % in every 4 x 4 block of the 32 x 32 image.
+TEST(GpuBlenderLamps, VertexColoursAgreeWithCycles) {
+    VKP_REQUIRE_DEVICE(dev);
+    const std::filesystem::path dir = lampsDir();
+    const Image cycles = readImage(dir / "cycles-vertex-colors.exr");
+    Scene scene = loadSceneGltf(dir / "vertex-colors.gltf");
+    ASSERT_FALSE(scene.vertices.color.empty());
+    for (Material& m : scene.materials) m.pbr.specular = 0.0f;
+    scene.render.background = glm::vec3(1.0f);
+    scene.camera.width = cycles.width;
+    scene.camera.height = cycles.height;
+    const PixelStats st(renderSums(dev, scene, Sampler::Mis, 256, "blender vertex colours"));
+    ASSERT_TRUE(litAndNotConstant(cycles, "Cycles"));
+    double worst = 0.0;
+    for (std::uint32_t by = 0; by + 4 <= cycles.height; by += 4)
+        for (std::uint32_t bx = 0; bx + 4 <= cycles.width; bx += 4)
+            for (int c = 0; c < 3; ++c) {
+                double a = 0, b = 0;
+                for (const Pixel& p : rect(bx, by, bx + 4, by + 4)) {
+                    a += st.mean.at(p.x, p.y, c);
+                    b += cycles.at(p.x, p.y, c);
+                }
+                worst = std::max(worst, std::abs(a / b - 1.0));
+                EXPECT_NEAR(a / b, 1.0, kTolerance) << "block " << bx << "," << by << " channel " << kChannel[c];
+            }
+    std::printf("64 blocks of 4 x 4: largest |vkpath / Cycles - 1| = %.4f\n", worst);
 }
 
 }  // namespace
