@@ -7,9 +7,13 @@
 # KHR_materials_specular 0, the same Lambertian BRDF). Lamps are points (radius 0) and the sun a
 # direction (angle 0), as glTF's punctual lights are; black world; no denoising.
 import math
+import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import camera_down, image_size, render_cycles, world_color  # noqa: E402
 
 out_gltf, out_exr, size, spp = sys.argv[sys.argv.index("--") + 1:][:4]
 size, spp = int(size), int(spp)
@@ -47,21 +51,9 @@ lamp("spot", "SPOT", 400.0, (3.0, -1.0, 3.0), (math.radians(15.0), 0.0, 0.0), sh
      spot_size=math.radians(50.0), spot_blend=0.3)
 lamp("sun", "SUN", 0.5, (0.0, 0.0, 10.0), (math.radians(35.0), 0.0, math.radians(20.0)), angle=0.0)
 
-cam_data = bpy.data.cameras.new("camera")
-cam_data.angle = math.radians(60.0)
-cam = bpy.data.objects.new("camera", cam_data)
-cam.location = (0.0, 0.0, 9.0)  # straight down at the floor
-scene.collection.objects.link(cam)
-scene.camera = cam
-
-world = bpy.data.worlds.new("black")
-world.use_nodes = False
-world.color = (0.0, 0.0, 0.0)
-scene.world = world
-
-scene.render.resolution_x = size  # before the export: the camera's aspectRatio
-scene.render.resolution_y = size
-scene.render.resolution_percentage = 100
+camera_down(scene, 9.0, 60.0)  # straight down at the floor
+world_color(scene, (0.0, 0.0, 0.0))
+image_size(scene, size)  # before the export: the camera's aspectRatio
 bpy.ops.export_scene.gltf(filepath=out_gltf, export_format="GLTF_SEPARATE", export_lights=True, export_cameras=True)
 
 # Cycles renders the floor as a pure Diffuse BSDF (what vkpath renders with specular 0).
@@ -71,15 +63,4 @@ diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
 diffuse.inputs["Roughness"].default_value = 0.0
 mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
 
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = spp
-scene.cycles.use_denoising = False
-scene.cycles.use_adaptive_sampling = False
-scene.cycles.seed = 1
-scene.render.film_transparent = False
-scene.view_settings.view_transform = "Standard"
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
-scene.render.filepath = out_exr
-bpy.ops.render.render(write_still=True)
+render_cycles(scene, spp, out_exr)

@@ -6,8 +6,14 @@
 #   blender -b --factory-startup --python tools/blender/vertex_colors.py -- OUT.gltf OUT.exr SIZE SPP
 # The exported material is Principled (roughness 1, specular 0, base colour from the attribute);
 # Cycles renders a pure Diffuse BSDF of the attribute's colour, one bounce.
-import math, sys
+import os
+import sys
+
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import camera_down, image_size, render_cycles, world_color  # noqa: E402
+
 out_gltf, out_exr, size, spp = sys.argv[sys.argv.index("--") + 1:][:4]
 size, spp = int(size), int(spp)
 bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -32,31 +38,11 @@ ca = nt.nodes.new("ShaderNodeVertexColor")
 ca.layer_name = "Col"
 nt.links.new(ca.outputs["Color"], bsdf.inputs["Base Color"])
 mesh.materials.append(mat)
-cam_data = bpy.data.cameras.new("camera")
-cam_data.angle = math.radians(30.0)
-cam = bpy.data.objects.new("camera", cam_data)
-cam.location = (0.0, 0.0, 4.0)
-scene.collection.objects.link(cam)
-scene.camera = cam
-world = bpy.data.worlds.new("white")
-world.use_nodes = False
-world.color = (1.0, 1.0, 1.0)
-scene.world = world
-scene.render.resolution_x = size
-scene.render.resolution_y = size
-scene.render.resolution_percentage = 100
+camera_down(scene, 4.0, 30.0)
+world_color(scene, (1.0, 1.0, 1.0))
+image_size(scene, size)  # before the export: the camera's aspectRatio
 bpy.ops.export_scene.gltf(filepath=out_gltf, export_format="GLTF_SEPARATE", export_cameras=True, export_colors=True)
 diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
 nt.links.new(ca.outputs["Color"], diffuse.inputs["Color"])
 nt.links.new(diffuse.outputs["BSDF"], nt.nodes["Material Output"].inputs["Surface"])
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = spp
-scene.cycles.use_denoising = False
-scene.cycles.use_adaptive_sampling = False
-scene.cycles.max_bounces = 1
-scene.view_settings.view_transform = "Standard"
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
-scene.render.filepath = out_exr
-bpy.ops.render.render(write_still=True)
+render_cycles(scene, spp, out_exr, max_bounces=1)

@@ -1,0 +1,49 @@
+# What tools/blender/*.py share (Debian's Blender 3.4): a camera looking straight down, a world of
+# one colour, the image size (set before the glTF export, which writes the camera's aspect ratio),
+# and Cycles' settings for a reference render (CPU, fixed seed, no denoising, no adaptive sampling,
+# linear 32-bit EXR).
+import math
+
+import bpy
+
+
+def camera_down(scene, height, angle_degrees):
+    """A camera at (0, 0, height) (Blender's +Z up) looking down -Z with the given field of view."""
+    data = bpy.data.cameras.new("camera")
+    data.angle = math.radians(angle_degrees)
+    cam = bpy.data.objects.new("camera", data)
+    cam.location = (0.0, 0.0, height)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+
+
+def world_color(scene, rgb):
+    """A world of constant radiance rgb (no nodes)."""
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = False
+    world.color = rgb
+    scene.world = world
+
+
+def image_size(scene, size):
+    scene.render.resolution_x = size
+    scene.render.resolution_y = size
+    scene.render.resolution_percentage = 100
+
+
+def render_cycles(scene, spp, out_exr, max_bounces=None):
+    """Cycles' reference render of scene to the linear EXR out_exr."""
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = spp
+    scene.cycles.use_denoising = False
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.seed = 1
+    if max_bounces is not None:
+        scene.cycles.max_bounces = max_bounces
+    scene.render.film_transparent = False
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = out_exr
+    bpy.ops.render.render(write_still=True)
