@@ -55,9 +55,8 @@ gpu::GpuFrame packFrame(const Scene& scene, LightPick pick, glm::uvec2 workgroup
     f.background = v4(scene.render.background);
     f.size = glm::uvec4(scene.camera.width, scene.camera.height, scene.render.maxDepth, scene.render.seed);
     const std::uint32_t punctual = std::uint32_t(scene.punctualLights.size());
-    const std::uint32_t picked = std::uint32_t(scene.lights.size()) + punctual;
     f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), scene.render.rouletteDepth, emittingLightCount(scene) + punctual, 0);
-    f.lightList = glm::uvec4(picked, punctual, picked, 0);  // the records follow the pick's entries (packLights)
+    f.punctual = glm::uvec4(punctual, 0, 0, 0);
     const std::uint32_t groupsX = (scene.camera.width + workgroup.x - 1) / workgroup.x;
     f.tiles = glm::uvec4(groupsX, 0, 0, 0);
     const double rot = glm::radians(double(scene.environment.rotateY));

@@ -97,7 +97,7 @@ std::vector<gpu::GpuLight> packLights(const Scene& scene, const std::vector<std:
         r.q0 = glm::vec4(at, std::bit_cast<float>(std::uint32_t(p.kind)));
         r.q1 = glm::vec4(p.intensity, gpu::spotScale(std::cos(p.innerCone), cosOuter));
         r.q2 = glm::vec4(p.direction, cosOuter);
-        r.q3 = glm::vec4(own.probability[k], own.threshold[k], std::bit_cast<float>(own.alias[k]), 0.0f);
+        r.q3 = glm::vec4(0.0f, own.probability[k], own.threshold[k], std::bit_cast<float>(own.alias[k]));  // a GpuLight entry
         static_assert(sizeof(r) == gpu::GPU_PUNCTUAL_TEXELS * sizeof(gpu::GpuLight));
         for (const glm::vec4& t : {r.q0, r.q1, r.q2, r.q3}) out.push_back(gpu::GpuLight{t});
     }

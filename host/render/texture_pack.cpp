@@ -161,8 +161,7 @@ TexturePack packTextures(const Scene& scene) {
 
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh) {
     std::vector<glm::uvec4> out(std::max<std::size_t>(bvh.primToShape.size(), 1) * kAttributeTexels, glm::uvec4(0));
-    std::vector<glm::uvec4> uv1Records;  // appended after the primitive records
-    std::vector<glm::uvec4> colorRecords;  // appended after those
+    std::vector<glm::uvec4> extra;  // TEXCOORD_1 and COLOR_0 records, appended after the primitive records
     const MeshVertices& mv = scene.vertices;
     for (std::size_t i = 0; i < bvh.primToShape.size(); ++i) {
         const Shape* sp = primShape(scene, bvh, i);
@@ -178,18 +177,18 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& 
         std::uint32_t uv1At = 0;  // 0: no TEXCOORD_1 (the first record starts at 8 or later)
         if ((tv.flags & TriangleVertices::kHasUv1) && !mv.uv1.empty()) {
             const glm::vec2 a = mv.uv1.at(tv.v[0]), b = mv.uv1.at(tv.v[1]), c = mv.uv1.at(tv.v[2]);
-            uv1At = std::uint32_t(out.size() + uv1Records.size());
-            uv1Records.emplace_back(bits(a.x), bits(a.y), bits(b.x), bits(b.y));
-            uv1Records.emplace_back(bits(c.x), bits(c.y), 0u, 0u);
+            uv1At = std::uint32_t(out.size() + extra.size());
+            extra.emplace_back(bits(a.x), bits(a.y), bits(b.x), bits(b.y));
+            extra.emplace_back(bits(c.x), bits(c.y), 0u, 0u);
         }
         rec[1] = glm::uvec4(bits(uv[2].x), bits(uv[2].y), tv.flags, uv1At);
-        std::uint32_t colorAt = 0;  // as uv1At, relative to the records' end until they are all placed
+        std::uint32_t colorAt = 0;  // 0: no COLOR_0 (as uv1At)
         if ((tv.flags & TriangleVertices::kHasColor) && !mv.color.empty()) {
             const glm::vec4 a = mv.color.at(tv.v[0]), b = mv.color.at(tv.v[1]), c = mv.color.at(tv.v[2]);
-            colorAt = std::uint32_t(colorRecords.size()) + 1u;
-            colorRecords.emplace_back(glm::packHalf2x16(glm::vec2(a.x, a.y)), glm::packHalf2x16(glm::vec2(a.z, a.w)),
-                                      glm::packHalf2x16(glm::vec2(b.x, b.y)), glm::packHalf2x16(glm::vec2(b.z, b.w)));
-            colorRecords.emplace_back(glm::packHalf2x16(glm::vec2(c.x, c.y)), glm::packHalf2x16(glm::vec2(c.z, c.w)), 0u, 0u);
+            colorAt = std::uint32_t(out.size() + extra.size());
+            extra.emplace_back(glm::packHalf2x16(glm::vec2(a.x, a.y)), glm::packHalf2x16(glm::vec2(a.z, a.w)),
+                               glm::packHalf2x16(glm::vec2(b.x, b.y)), glm::packHalf2x16(glm::vec2(b.z, b.w)));
+            extra.emplace_back(glm::packHalf2x16(glm::vec2(c.x, c.y)), glm::packHalf2x16(glm::vec2(c.z, c.w)), 0u, 0u);
         }
         for (int k = 0; k < 3; ++k) {
             const glm::vec3 n = (tv.flags & TriangleVertices::kHasNormal) ? mv.normal.at(tv.v[k]) : glm::vec3(0.0f);
@@ -199,14 +198,7 @@ std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& 
             rec[5 + k] = glm::uvec4(bits(t.x), bits(t.y), bits(t.z), bits(t.w));
         }
     }
-    out.insert(out.end(), uv1Records.begin(), uv1Records.end());
-    // The colour records go last: their texel is known now (colorAt - 1 counted from here).
-    const std::uint32_t colorBase = std::uint32_t(out.size());
-    for (std::size_t i = 0; i < bvh.primToShape.size() && !colorRecords.empty(); ++i) {
-        std::uint32_t& at = out[i * kAttributeTexels + 2].w;
-        if (at != 0u) at = colorBase + (at - 1u);
-    }
-    out.insert(out.end(), colorRecords.begin(), colorRecords.end());
+    out.insert(out.end(), extra.begin(), extra.end());
     return out;
 }
 

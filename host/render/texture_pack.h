@@ -41,11 +41,12 @@ TexturePack packTextures(const Scene& scene);
 
 /// One kAttributeTexels record per BVH primitive (bvh.prims order, primShape): UVs, shading normals
 /// and tangents of mesh triangles (object space for an instanced mesh's); zeros (flags 0: no
-/// attributes) for every other primitive. After them, a two-texel TEXCOORD_1 record, (c0, c1) |
-/// (c2, 0, 0), per triangle that has TEXCOORD_1 (only scenes that have it pay for it), then a
-/// two-texel COLOR_0 record per triangle that has COLOR_0: RGBA of each corner as half floats,
-/// packHalf2x16 (r, g), (b, a): (c0.rg, c0.ba, c1.rg, c1.ba) | (c2.rg, c2.ba, 0, 0), at the texel in
-/// the w of the record's third texel (0: none).
+/// attributes) for every other primitive. After them, in primitive order, a two-texel TEXCOORD_1
+/// record, (c0, c1) | (c2, 0, 0), per triangle that has TEXCOORD_1 (at the texel in the w of the
+/// record's second texel) and a two-texel COLOR_0 record per triangle that has COLOR_0, RGBA of
+/// each corner as half floats, packHalf2x16 (r, g), (b, a): (c0.rg, c0.ba, c1.rg, c1.ba) |
+/// (c2.rg, c2.ba, 0, 0) (at the texel in the w of the record's third texel); 0: none. Only scenes
+/// that have them pay for them.
 std::vector<glm::uvec4> packVertexAttributes(const Scene& scene, const FlatBvh& bvh);
 
 /// True if some kernel material of a shape in the scene reads a texture (HAS_TEXTURES).

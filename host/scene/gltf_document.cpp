@@ -262,6 +262,11 @@ std::string line(const std::string& file, const std::string& place, const std::s
     return json::formatError(file, place, message);
 }
 
+void warnOnce(Scene& scene, std::string warning) {
+    if (std::find(scene.warnings.begin(), scene.warnings.end(), warning) == scene.warnings.end())
+        scene.warnings.push_back(std::move(warning));
+}
+
 bool extensionImplemented(const std::string& name) {
     static const char* const kImplemented[] = {
         "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_transmission",

@@ -1,7 +1,6 @@
 // KHR_lights_punctual: the point, spot and directional lights of a glTF file, placed by the nodes
 // that carry them (https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_lights_punctual).
 // Photometric units in the file (candela, lux), radiometric in vkpath: divided by kLumensPerWatt.
-#include <algorithm>
 #include <cmath>
 
 #include "scene/gltf_parts.h"
@@ -71,12 +70,9 @@ void appendLights(const Document& doc, const Instances& inst, Scene& scene) {
         const double len = glm::length(axis);
         l.direction = (len > 0.0 && std::isfinite(len)) ? glm::vec3(axis / len) : glm::vec3(0.0f);
         if (const std::string problem = punctualLightProblem(l); !problem.empty()) fail(doc.file, l.name, problem);
-        if (model.lights[li.light].range > 0.0 && !rangeWarned) {
-            // Once per file, also when a JSON scene includes the file several times.
-            const std::string w =
-                line(doc.file, place, "range ignored: vkpath's lights fall off with the inverse square of the distance only (docs/gltf.md)");
-            if (std::find(scene.warnings.begin(), scene.warnings.end(), w) == scene.warnings.end()) scene.warnings.push_back(w);
-            rangeWarned = true;
+        if (model.lights[li.light].range > 0.0 && !rangeWarned) {  // once per file, naming its first light with a range
+            warnOnce(scene, line(doc.file, place, "range ignored: vkpath's lights fall off with the inverse square of the distance only (docs/gltf.md)"));
+            rangeWarned = true;  // warnOnce: also when a JSON scene includes the file several times
         }
         scene.punctualLights.push_back(std::move(l));
     }

@@ -273,8 +273,7 @@ Material MaterialMapper::convert(int m) {
     else fail(f, place + "/alphaMode", "\"" + g.alphaMode + "\" is not OPAQUE, MASK or BLEND");
     p.alphaCutoff = scalar(g.alphaCutoff, 0.0, kInf, f, place + "/alphaCutoff");
     out.twoSided = g.doubleSided;
-    if (const Value* u = extension(g.extensions, "KHR_materials_unlit", f, place)) {
-        (void)u;
+    if (extension(g.extensions, "KHR_materials_unlit", f, place)) {
         // Unlit (docs/gltf.md): the surface shows its base colour whatever light falls on it. In a
         // path tracer: an emitter of radiance = base colour (x its texture, through the emissive
         // slot), reflecting nothing; the other properties are ignored, as the extension says.

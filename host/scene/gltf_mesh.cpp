@@ -255,9 +255,8 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
         flags |= TriangleVertices::kHasColor;
         if (const Material& m = scene.materials.at(material); kernelMaterial(m).type != MaterialType::Pbr) {
             // Vertex colours tint the glTF BRDF only (docs/gltf.md): say so once per primitive and material.
-            const std::string w = line(doc.file, where, "COLOR_0 ignored: its material \"" + m.name + "\" renders as " +
-                                                            (m.emits() ? "an emitter" : "glass or a book material"));
-            if (std::find(scene.warnings.begin(), scene.warnings.end(), w) == scene.warnings.end()) scene.warnings.push_back(w);
+            warnOnce(scene, line(doc.file, where, "COLOR_0 ignored: its material \"" + m.name + "\" renders as " +
+                                                      (m.emits() ? "an emitter" : "glass or a book material")));
         }
         mv.color.resize(base, glm::vec4(1.0f));
         for (std::size_t i = 0; i < nv; ++i) {

@@ -33,6 +33,9 @@ struct Document {
 [[noreturn]] void fail(const std::string& file, const std::string& place, const std::string& message);
 /// "<file>: <place>: <message>" on one line, for warnings.
 std::string line(const std::string& file, const std::string& place, const std::string& message);
+/// Add warning (a line()) to scene.warnings unless it is there already: for what each primitive,
+/// light or include of a file would otherwise repeat.
+void warnOnce(Scene& scene, std::string warning);
 
 /// Read a .gltf or .glb (by content: GLB starts with "glTF"), its buffers and images (decoded to
 /// RGBA8 with stb_image). Refuses a malformed GLB container, JSON nested deeper than 256 levels,

@@ -36,13 +36,6 @@ std::string punctualLightProblem(const PunctualLight& l) {
     const float len = glm::length(l.direction);
     if (l.kind != PunctualLight::Kind::Point && !(std::abs(len - 1.0f) < 1e-3f))
         return "its direction is zero or not finite (a node scaled to nothing?)";
-    if (l.kind == PunctualLight::Kind::Spot) {
-        if (!(l.outerCone > 0.0f && l.outerCone <= std::numbers::pi_v<float> / 2.0f + 1e-6f))
-            return "the outer cone angle must be in (0, pi/2] radians (0, 90] degrees";
-        // Equal angles (a hard edge) are accepted: Blender writes them for a spot without blend.
-        if (!(l.innerCone >= 0.0f && l.innerCone <= l.outerCone))
-            return "the inner cone angle must be >= 0 and at most the outer cone angle";
-    }
     return {};
 }
 

@@ -13,10 +13,12 @@ namespace vkp {
 inline constexpr double kLumensPerWatt = 683.0;
 
 /// Empty if l can be rendered, else what is wrong with it, as the end of a sentence that begins
-/// with the light's place ("its intensity must be ..."): a negative or non-finite intensity, a
-/// position beyond float range, a direction that is not unit length (spot, directional), cone
-/// angles outside 0 <= inner <= outer <= pi/2 (equal: a hard edge, as Blender writes a spot
-/// without blend; the falloff then spans 0.001 in cosine inside the outer cone).
+/// with the light's place ("its intensity must be ..."): what the loaders' own checks of the
+/// file's values cannot see, that is a negative or non-finite intensity after the unit
+/// conversion, a position beyond float range once placed, a direction that is not unit length
+/// (spot, directional: a node scaled to nothing). The cone angles are checked by each loader,
+/// where it can name the field (0 <= inner <= outer <= pi/2; equal: a hard edge, as Blender writes
+/// a spot without blend).
 std::string punctualLightProblem(const PunctualLight& l);
 
 }  // namespace vkp

@@ -154,14 +154,20 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
     return out;
 }
 
-bool isPunctualObject(const json::Value& v) {
+/// An entry's "type" when it is an object with a string "type", else "" (its reader reports it).
+std::string objectType(const json::Value& v) {
     const json::Json& j = v.json();
-    if (!j.is_object()) return false;
+    if (!j.is_object()) return {};
     const auto t = j.find("type");
-    if (t == j.end() || !t->is_string()) return false;
-    const std::string type = t->get<std::string>();
+    return t != j.end() && t->is_string() ? t->get<std::string>() : std::string();
+}
+
+bool isPunctualObject(const json::Value& v) {
+    const std::string type = objectType(v);
     return type == "point_light" || type == "spot_light" || type == "directional_light";
 }
+
+bool isGltfObject(const json::Value& v) { return objectType(v) == "gltf"; }
 
 /// {"type": "point_light" | "spot_light" | "directional_light", ...} (scenes/README.md "Lights"):
 /// a punctual light in radiometric units, moved by its "transform" and made camera-relative.
@@ -169,19 +175,22 @@ PunctualLight readPunctual(const json::Value& v, const Scene& scene) {
     json::Object o = v.object();
     const std::string type = o.choice("type", {"point_light", "spot_light", "directional_light"});
     PunctualLight l;
+    l.kind = type == "point_light"  ? PunctualLight::Kind::Point
+             : type == "spot_light" ? PunctualLight::Kind::Spot
+                                    : PunctualLight::Kind::Directional;
     l.name = "the light at " + v.pointer();
     ObjectTransform xf;
     if (auto t = o.optional("transform")) xf = readTransform(*t);
     const double pi = 3.14159265358979323846;
-    if (type == "directional_light") {
-        l.kind = PunctualLight::Kind::Directional;
+    if (l.kind != PunctualLight::Kind::Point) {  // a spot's axis, the way a directional light travels
         const json::Value dir = o.required("direction");
         const glm::dvec3 d = xf.map.vector(dir.dvec3());
         if (!(glm::length(d) > 0.0)) dir.fail("must not be zero");
         l.direction = glm::vec3(glm::normalize(d));
+    }
+    if (l.kind == PunctualLight::Kind::Directional) {
         l.intensity = o.vec3("irradiance", json::Range::atLeast(0.0));
     } else {
-        l.kind = type == "spot_light" ? PunctualLight::Kind::Spot : PunctualLight::Kind::Point;
         l.position = glm::vec3(xf.map.point(o.dvec3("position")) - scene.origin);
         const auto intensity = o.optional("intensity");
         const auto power = o.optional("power");
@@ -190,18 +199,14 @@ PunctualLight readPunctual(const json::Value& v, const Scene& scene) {
         // Power as Blender states it: a spot of power P is as bright as a point light of power P.
         l.intensity = intensity ? intensity->vec3(json::Range::atLeast(0.0))
                                 : glm::vec3(glm::dvec3(power->vec3(json::Range::atLeast(0.0))) / (4.0 * pi));
-        if (l.kind == PunctualLight::Kind::Spot) {
-            const json::Value dir = o.required("direction");
-            const glm::dvec3 d = xf.map.vector(dir.dvec3());
-            if (!(glm::length(d) > 0.0)) dir.fail("must not be zero");
-            l.direction = glm::vec3(glm::normalize(d));
-            const float outer = o.number("outer_angle", json::Range::closed(0.0, 90.0), 45.0f);
-            if (!(outer > 0.0f)) o.required("outer_angle").fail("must be > 0");
-            const float inner = o.number("inner_angle", json::Range::closed(0.0, 90.0), 0.0f);
-            if (!(inner <= outer)) o.required("inner_angle").fail("must be at most outer_angle (" + std::to_string(outer) + ")");
-            l.outerCone = float(double(outer) * pi / 180.0);
-            l.innerCone = float(double(inner) * pi / 180.0);
-        }
+    }
+    if (l.kind == PunctualLight::Kind::Spot) {
+        const float outer = o.number("outer_angle", json::Range::closed(0.0, 90.0), 45.0f);
+        if (!(outer > 0.0f)) o.required("outer_angle").fail("must be > 0");
+        const float inner = o.number("inner_angle", json::Range::closed(0.0, 90.0), 0.0f);
+        if (!(inner <= outer)) o.required("inner_angle").fail("must be at most outer_angle (" + std::to_string(outer) + ")");
+        l.outerCone = float(double(outer) * pi / 180.0);
+        l.innerCone = float(double(inner) * pi / 180.0);
     }
     o.finish();
     if (const std::string problem = punctualLightProblem(l); !problem.empty()) v.fail(problem);
@@ -252,13 +257,6 @@ void readGltfObject(const json::Value& v, const std::map<std::string, std::uint3
     } catch (const InputError& e) {
         v.fail(e.what());
     }
-}
-
-bool isGltfObject(const json::Value& v) {
-    const json::Json& j = v.json();
-    if (!j.is_object()) return false;
-    const auto t = j.find("type");
-    return t != j.end() && t->is_string() && t->get<std::string>() == "gltf";
 }
 
 /// Announce every include whose file and material resolve (the others fail when read), so that

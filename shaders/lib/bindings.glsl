@@ -81,9 +81,12 @@ GpuLight fetchLight(uint i) {
     l.l0 = fetchF(uLights, int(i));
     return l;
 }
-/// Punctual light k's record (after the light list: GpuFrame::lightList.z).
+/// Texel of punctual light k's record: after the pick's entries (the sampled objects', counts.x,
+/// then the punctual lights', punctual.x).
+int punctualTexel(uint k) { return int(frame.counts.x + frame.punctual.x + k * GPU_PUNCTUAL_TEXELS); }
+/// Punctual light k's record.
 GpuPunctualLight fetchPunctual(uint k) {
-    int at = int(frame.lightList.z + k * GPU_PUNCTUAL_TEXELS);
+    int at = punctualTexel(k);
     GpuPunctualLight l;
     l.q0 = fetchF(uLights, at);
     l.q1 = fetchF(uLights, at + 1);

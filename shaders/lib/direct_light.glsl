@@ -62,7 +62,7 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     // ray's traversal loop (on a SIMD device such as lavapipe, the BSDF's state would otherwise
     // occupy registers, or spill, for every pass of that loop).
     float pl = r.pdf * pick;
-    float w = (neeWeighted(b) && !(HAS_PUNCTUAL_LIGHTS && r.delta)) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
+    float w = (neeWeighted(b) && !r.delta) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
     vec3 contribution = evalBsdf(b, beta, r.dir) * r.le * (w / pl);
     rays++;
     if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);

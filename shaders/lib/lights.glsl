@@ -76,10 +76,10 @@ uint pickLightUniform(float u, out float pickPdf) {
 }
 
 /// Number of punctual lights (shared/punctual_light.h).
-uint punctualCount() { return HAS_PUNCTUAL_LIGHTS ? frame.lightList.y : 0u; }
+uint punctualCount() { return HAS_PUNCTUAL_LIGHTS ? frame.punctual.x : 0u; }
 
 /// Entries of the power pick: the sampled objects, then the punctual lights.
-uint pickCount() { return HAS_PUNCTUAL_LIGHTS ? frame.lightList.x : lightCount(); }
+uint pickCount() { return lightCount() + punctualCount(); }
 
 /// Pick one emitter (emitting surface or punctual light) in proportion to its power with u in
 /// [0,1): its light index. Requires emitterCount() > 0; objects that do not emit have probability
@@ -141,14 +141,21 @@ LightRay samplePunctual(uint k, vec3 x, vec3 xo) {
     return r;
 }
 
+/// Punctual light k's entry of the pick among the punctual lights alone (GpuPunctualLight::q3).
+GpuLight punctualPickEntry(uint k) {
+    GpuLight l;
+    l.l0 = fetchF(uLights, punctualTexel(k) + 3);
+    return l;
+}
+
 /// Pick one punctual light in proportion to its power with u in [0,1), among the punctual lights
-/// alone (GpuPunctualLight::q3's alias table): its index. Requires punctualCount() > 0.
+/// alone (the same alias pick as pickLightPower, over the q3 entries): its index. Requires
+/// punctualCount() > 0.
 uint pickPunctual(float u, out float pickPdf) {
     float frac;
     uint column = aliasColumn(u, punctualCount(), frac);
-    vec4 q3 = fetchPunctual(column).q3;
-    uint k = (frac < q3.y) ? column : floatBitsToUint(q3.z);
-    pickPdf = fetchPunctual(k).q3.x;
+    uint k = aliasResolve(column, frac, punctualPickEntry(column));
+    pickPdf = punctualPickEntry(k).l0.y;
     return k;
 }
 

@@ -7,7 +7,7 @@
 //                           n2 | t0 | t1 | t2 (TEXCOORD_0 of the corners; flags: TriangleVertices::
 //                           kHas*; zeros for other primitives); after all of them, for triangles
 //                           with TEXCOORD_1 (ATTR_HAS_UV1), its corners (c0, c1) | (c2, 0, 0) at
-//                           texel uv1At; then for triangles with COLOR_0 (ATTR_HAS_COLOR), its
+//                           texel uv1At, and for triangles with COLOR_0 (ATTR_HAS_COLOR), its
 //                           corners' RGBA as half floats at the texel in n0's w (vertexColor);
 //   uTexInfo    (RGBA32UI): [0] = (first texture header, ...); material m's record at
 //                           1 + MAT_TEX_TEXELS m (layout: shared/texture_record.h); texture headers
@@ -171,7 +171,7 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         }
     }
     // glTF COLOR_0 multiplies the base colour (not glass a transmissionTexture made: becomeTransmitted).
-    if (HAS_VERTEX_COLORS && mtype == MAT_PBR && (floatBitsToUint(m.m0.w) & 15u) == MAT_PBR) m.m0.xyz *= vertexColor(base, flags, ab).xyz;
+    if (HAS_VERTEX_COLORS && (floatBitsToUint(m.m0.w) & MAT_TYPE_MASK) == MAT_PBR) m.m0.xyz *= vertexColor(base, flags, ab).xyz;
     if (HAS_TEXTURES && HAS_EMITTERS && mtype == MAT_DIFFUSE_LIGHT && (flags & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
         vec4 c;  // a glTF emitter (kernelMaterial: diffuse_light) with an emissiveTexture
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;

@@ -61,9 +61,9 @@ const uint GPU_MATERIAL_TEXELS = 4u;
 
 // ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
 // The lights buffer holds, in order: one GpuLight per sampled object (GpuFrame::counts.x of them:
-// the book's mixture picks among these), one GpuLight per punctual light (the power pick's alias
-// table spans both: GpuFrame::lightList.x entries), then one GpuPunctualLight record per punctual
-// light from texel GpuFrame::lightList.z on.
+// the book's mixture picks among these), one GpuLight per punctual light (GpuFrame::punctual.x of
+// them; the power pick's alias table spans both lists), then one GpuPunctualLight record per
+// punctual light, from the entry after the last GpuLight on.
 // x: bits of the primitive index, or of LIGHT_PUNCTUAL_BIT | punctual light index; y: probability
 // of picking it in proportion to emitted power (0 for an object that does not emit), z:
 // alias-table threshold of column i (shared/light_pick.h), w: bits of the alias index of column i.
@@ -80,8 +80,9 @@ const uint GPU_LIGHT_TEXELS = 1u;
 //         falloff scale (spotScale)
 // q2.xyz: the spot's unit axis (the way it points); q2.w: cos(outer cone angle)
 // q3: the pick among the punctual lights alone (the `bsdf` and `mixture` samplers, which sample
-//     delta lights by next-event estimation only): x = its probability, y = alias threshold,
-//     z = bits of the alias index, w = 0
+//     delta lights by next-event estimation only), laid out as a GpuLight entry so that the same
+//     alias routines read it (shared/light_pick.h): x = 0, y = its probability, z = alias
+//     threshold, w = bits of the alias index
 struct GpuPunctualLight {
     vec4 q0;
     vec4 q1;
@@ -114,9 +115,7 @@ struct GpuFrame {
                       // radiance (a map or a non-zero background), else 0
     uvec4 envSize;    // x, y: width, height of the environment map (0: none, the constant
                       // background is the environment); z, w: 0
-    uvec4 lightList;  // x: entries of the power pick's alias table (sampled objects, then punctual
-                      // lights), y: punctual lights, z: texel of the first GpuPunctualLight in the
-                      // lights buffer, w: 0
+    uvec4 punctual;   // x: number of punctual lights (shared/punctual_light.h); y, z, w: 0
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel

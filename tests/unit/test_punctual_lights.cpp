@@ -259,12 +259,12 @@ TEST(PunctualLights, PackedAfterTheSurfacesAndPickedByPower) {
     EXPECT_EQ(glm::vec3(r[0].l0), glm::vec3(1, 2, 3) - glm::vec3(0, 1, 9));  // camera-relative
     EXPECT_EQ(std::bit_cast<std::uint32_t>(r[0].l0.w), gpu::PUNCTUAL_POINT);
     EXPECT_EQ(glm::vec3(r[1].l0), glm::vec3(2, 2, 2));
-    EXPECT_NEAR(r[3].l0.x, w[1] / (w[1] + w[2]), 1e-6);
+    EXPECT_NEAR(r[3].l0.y, w[1] / (w[1] + w[2]), 1e-6);
     const gpu::GpuLight* q = &lights[3 + gpu::GPU_PUNCTUAL_TEXELS];
     EXPECT_EQ(std::bit_cast<std::uint32_t>(q[0].l0.w), gpu::PUNCTUAL_SPOT);
     EXPECT_EQ(glm::vec3(q[2].l0), glm::vec3(0, -1, 0));
     EXPECT_FLOAT_EQ(q[2].l0.w, float(std::cos(40 * kPi / 180)));
-    EXPECT_NEAR(q[3].l0.x, w[2] / (w[1] + w[2]), 1e-6);
+    EXPECT_NEAR(q[3].l0.y, w[2] / (w[1] + w[2]), 1e-6);
     // The variant compiles the punctual lights in.
     EXPECT_NE(sceneFeatures(s).name().find("lights:quad+punctual"), std::string::npos) << sceneFeatures(s).name();
 }
