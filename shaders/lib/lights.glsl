@@ -81,16 +81,23 @@ uint punctualCount() { return HAS_PUNCTUAL_LIGHTS ? frame.punctual.x : 0u; }
 /// Entries of the power pick: the sampled objects, then the punctual lights.
 uint pickCount() { return lightCount() + punctualCount(); }
 
+/// An alias pick (shared/light_pick.h) with u in [0,1) among n >= 1 entries laid out as GpuLight
+/// (y: probability, z: threshold, w: alias) in the lights buffer, entry i at texel base + i stride:
+/// the entry's index and its probability.
+uint aliasPick(float u, uint n, uint base, uint stride, out float pickPdf) {
+    float frac;
+    uint column = aliasColumn(u, n, frac);
+    GpuLight entry;
+    entry.l0 = fetchF(uLights, int(base + column * stride));
+    uint i = aliasResolve(column, frac, entry);
+    pickPdf = fetchF(uLights, int(base + i * stride)).y;
+    return i;
+}
+
 /// Pick one emitter (emitting surface or punctual light) in proportion to its power with u in
 /// [0,1): its light index. Requires emitterCount() > 0; objects that do not emit have probability
 /// 0 and are never picked.
-uint pickLightPower(float u, out float pickPdf) {
-    float frac;
-    uint column = aliasColumn(u, pickCount(), frac);
-    uint li = aliasResolve(column, frac, fetchLight(column));
-    pickPdf = fetchLight(li).l0.y;
-    return li;
-}
+uint pickLightPower(float u, out float pickPdf) { return aliasPick(u, pickCount(), 0u, GPU_LIGHT_TEXELS, pickPdf); }
 
 /// Probability that pickLightPower picks light li.
 float pickPdfPower(uint li) { return fetchLight(li).l0.y; }
@@ -142,21 +149,10 @@ LightRay samplePunctual(uint k, vec3 x, vec3 xo) {
 }
 
 /// Punctual light k's entry of the pick among the punctual lights alone (GpuPunctualLight::q3).
-GpuLight punctualPickEntry(uint k) {
-    GpuLight l;
-    l.l0 = fetchF(uLights, punctualTexel(k) + 3);
-    return l;
-}
-
 /// Pick one punctual light in proportion to its power with u in [0,1), among the punctual lights
-/// alone (the same alias pick as pickLightPower, over the q3 entries): its index. Requires
-/// punctualCount() > 0.
+/// alone (the alias pick over the records' q3 entries): its index. Requires punctualCount() > 0.
 uint pickPunctual(float u, out float pickPdf) {
-    float frac;
-    uint column = aliasColumn(u, punctualCount(), frac);
-    uint k = aliasResolve(column, frac, punctualPickEntry(column));
-    pickPdf = punctualPickEntry(k).l0.y;
-    return k;
+    return aliasPick(u, punctualCount(), uint(punctualTexel(0u)) + 3u, GPU_PUNCTUAL_TEXELS, pickPdf);
 }
 
 /// A point on light li (light-list index; a punctual light: samplePunctual), sampled from the hit x (offset origin xo) on primitive
