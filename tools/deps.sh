@@ -8,6 +8,7 @@ packages=(
   cmake g++ make pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
+  libdraco-dev libmeshoptimizer-dev
 )
 # `tools/deps.sh --bench`: also what the benchmark suite needs (tools/bench.sh), not the tests.
 if [ "${1:-}" = "--bench" ]; then packages+=(python3-numpy python3-matplotlib valgrind); fi

@@ -183,6 +183,21 @@ std::pair<std::size_t, std::size_t> checkGlb(const std::string& bytes, const std
     return {20, static_cast<std::size_t>(jsonLength)};
 }
 
+/// The GLB bytes with its JSON chunk (at, n) replaced by json (padded with spaces to 4 bytes, as
+/// glTF 2.0 sec. 4.4.3.1 asks), the BIN chunk kept as it is.
+std::string withJsonChunk(const std::string& bytes, std::size_t at, std::size_t n, std::string json) {
+    while (json.size() % 4 != 0) json += ' ';
+    const std::string rest = bytes.substr(at + n);
+    const std::uint64_t total = 20 + json.size() + rest.size();
+    if (total >= (1ull << 32)) throw InputError("GLB too large after rewriting");  // not reached: < 4 GiB input, small growth
+    auto le = [](std::uint32_t v) {
+        std::string s(4, '\0');
+        for (int i = 0; i < 4; ++i) s[std::size_t(i)] = char((v >> (8 * i)) & 0xff);
+        return s;
+    };
+    return bytes.substr(0, 8) + le(std::uint32_t(total)) + le(std::uint32_t(json.size())) + bytes.substr(16, 4) + json + rest;
+}
+
 /// Refuse JSON nested deeper than kMaxJsonNesting (tinygltf converts extras and extensions recursively).
 void checkNesting(const char* text, std::size_t n, const std::string& file) {
     std::size_t depth = 0;
@@ -271,6 +286,7 @@ bool extensionImplemented(const std::string& name) {
     static const char* const kImplemented[] = {
         "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_transmission",
         "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_materials_unlit",
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression",
     };
     return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
 }
@@ -292,18 +308,24 @@ Document readDocument(const std::filesystem::path& path) {
     std::string err, warn;
     bool ok = false;
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    Rewritten rewritten;
     try {
         if (binary) {
             const auto [at, n] = checkGlb(bytes, doc.file);
             checkNesting(bytes.data() + at, n, doc.file);
             checkLights(bytes.data() + at, n, doc.file);
-            ok = loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                             static_cast<unsigned int>(bytes.size()), base.string());
+            const std::string json = rewriteForTinygltf(std::string_view(bytes.data() + at, n), doc.file, rewritten);
+            const std::string glb = json.empty() ? std::string() : withJsonChunk(bytes, at, n, json);
+            const std::string& in = json.empty() ? bytes : glb;
+            ok = loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(in.data()),
+                                             static_cast<unsigned int>(in.size()), base.string());
         } else {
             checkNesting(bytes.data(), bytes.size(), doc.file);
             checkLights(bytes.data(), bytes.size(), doc.file);
-            ok = loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(),
-                                            static_cast<unsigned int>(bytes.size()), base.string());
+            const std::string json = rewriteForTinygltf(bytes, doc.file, rewritten);
+            const std::string& in = json.empty() ? bytes : json;
+            ok = loader.LoadASCIIFromString(&doc.model, &err, &warn, in.data(), static_cast<unsigned int>(in.size()),
+                                            base.string());
         }
     } catch (const InputError&) {
         throw;
@@ -339,6 +361,8 @@ Document readDocument(const std::filesystem::path& path) {
             doc.warnings.push_back(line(doc.file, "extensionsUsed", "extension " + e + " is not supported by vkpath: ignored"));
         }
     }
+    decodeMeshopt(doc, rewritten);
+    decodeDraco(doc, rewritten);
     return doc;
 }
 

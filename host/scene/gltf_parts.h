@@ -1,5 +1,6 @@
 // The pieces of the glTF loader (gltf.h), one file each. Internal to host/scene.
 //   gltf_document.cpp   the file -> tinygltf::Model (GLB checks, file access, image decoding, extensions)
+//   gltf_compression.cpp EXT_meshopt_compression and KHR_draco_mesh_compression, decoded to plain buffers
 //   gltf_accessor.cpp   validated accessor reads (strides, sparse, normalized integers)
 //   gltf_mesh.cpp       primitives -> world-space triangles, vertex attributes, lights
 //   gltf_material.cpp   materials, textures, samplers -> Scene (MaterialType::Pbr)
@@ -10,8 +11,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,6 +45,24 @@ void warnOnce(Scene& scene, std::string warning);
 /// a missing or unreadable buffer or image, a glTF major version other than 2, and any extension in
 /// extensionsRequired that vkpath does not implement; warns about one only in extensionsUsed.
 Document readDocument(const std::filesystem::path& file);
+
+/// What rewriteForTinygltf changed in a file that uses compressed meshes, for the decoders to undo.
+struct Rewritten {
+    /// EXT_meshopt_compression fallback buffers (no uri: the data exists only compressed), given a
+    /// one-byte placeholder: buffer index -> the byteLength the file gives.
+    std::map<std::size_t, std::uint64_t> fallbackLength;
+    /// KHR_draco_mesh_compression indices accessors (no bufferView) given the stream's bufferView.
+    std::vector<std::size_t> borrowedIndexViews;
+};
+/// The JSON text changed so that tinygltf 2.7 reads a file with compressed meshes (empty: no
+/// change needed).
+std::string rewriteForTinygltf(std::string_view json, const std::string& file, Rewritten& out);
+/// Decode every EXT_meshopt_compression bufferView into its own buffer (the fallback buffers get
+/// the bytes their views cover). Refuses malformed streams naming the bufferView.
+void decodeMeshopt(Document& doc, const Rewritten& rewritten);
+/// Decode every KHR_draco_mesh_compression primitive into new buffers, bufferViews and accessors
+/// (copies of the primitive's, which then point at them). Refuses a mismatch naming the primitive.
+void decodeDraco(Document& doc, const Rewritten& rewritten);
 
 /// Extensions vkpath reads (every other one is refused when required, warned about when used).
 bool extensionImplemented(const std::string& name);
