@@ -100,7 +100,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
     if (s.depth >= frame.size.z) return true;  // max_depth rays per path
 
-    Bsdf b = makeBsdf(h.m, h.ns, h.nShade, s.d, h.frontFace);
+    Bsdf b = makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace);
     float uStrategy = bsdfIsDelta(b) ? 0.0f : sampleNext(s.smp);  // picks a light, or the mixture's half
     vec3 uBsdf = bsdfNumbers(b, s.smp);
     vec3 xo = spawnFrom(h, h.ns);

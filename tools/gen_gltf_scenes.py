@@ -59,6 +59,15 @@ has a test in tests/unit/test_gltf_*.cpp that checks the numbers given here:
                                whose TEXCOORD_1 (normalized uint16) is not: a baseColorTexture and a
                                specularTexture (alpha 0 | 1), both 2x1, nearest, clamp, through
                                TEXCOORD_1
+  layer-textures.gltf          KHR_materials_clearcoat and KHR_materials_sheen textures on the device
+                               (tests/gpu/test_gpu_layers.cpp, test_gltf_materials.cpp): five quads
+                               laid out as in specular-textures.gltf (with TANGENT +x), base colour
+                               0.1, roughness 0.5: a clearcoatTexture whose R is 0 | 1, a
+                               clearcoatRoughnessTexture whose G is 0 | 1, a sheenColorTexture white
+                               | sRGB (0, 128, 255), a sheenRoughnessTexture whose A is 0 | 1 (all
+                               2x1, nearest, clamp; the other channels are decoys), and a black base
+                               under a coat whose clearcoatNormalTexture (1x1) tilts it about 21
+                               degrees towards +x
   instances.gltf               instancing (tests/gpu/test_gpu_instancing.cpp, test_gltf_loader.cpp):
                                a lumpy blob with NORMALs used by 5 nodes (translated, rotated, a
                                non-uniform scale, a mirror, a mirror inside a rotated parent), a
@@ -736,6 +745,43 @@ def transmission_textures(out):
     g.write_gltf(out / "transmission-textures.gltf")
 
 
+def layer_textures(out):
+    """KHR_materials_clearcoat and KHR_materials_sheen textures: see the docstring at the top."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular"]
+    g.doc["images"] = [{"uri": data_png(2, 1, [[(0, 255, 255, 255), (255, 0, 0, 0)]])},      # R 0 | 1
+                       {"uri": data_png(2, 1, [[(255, 0, 255, 255), (0, 255, 0, 0)]])},      # G 0 | 1
+                       {"uri": data_png(2, 1, [[(255, 255, 255, 0), (0, 128, 255, 0)]])},    # RGB white | (0, 128, 255)
+                       {"uri": data_png(2, 1, [[(255, 255, 255, 0), (0, 0, 0, 255)]])},      # A 0 | 1
+                       {"uri": data_png(1, 1, [[(171, 128, 247, 255)]])}]                    # a tilted normal
+    g.doc["samplers"] = [{"magFilter": 9728, "wrapS": 33071, "wrapT": 33071}]
+    g.doc["textures"] = [{"source": i, "sampler": 0} for i in range(5)]
+
+    def mat(name, ext, base=0.1, specular=None):
+        m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [base, base, base, 1], "metallicFactor": 0,
+                                                     "roughnessFactor": 0.5},
+             "extensions": ext}
+        if specular is not None:
+            m["extensions"]["KHR_materials_specular"] = {"specularFactor": specular}
+        return m
+    g.doc["materials"] = [
+        mat("clearcoat-half", {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 0.2,
+                                                           "clearcoatTexture": {"index": 0}}}),
+        mat("clearcoat-roughness-half", {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 1,
+                                                                     "clearcoatRoughnessTexture": {"index": 1}}}),
+        mat("sheen-color-half", {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.5,
+                                                         "sheenColorTexture": {"index": 2}}}),
+        mat("sheen-roughness-half", {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 1,
+                                                             "sheenRoughnessTexture": {"index": 3}}}),
+        mat("clearcoat-normal", {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 0.3,
+                                                             "clearcoatNormalTexture": {"index": 4, "scale": 1}}},
+            base=0.0, specular=0),
+    ]
+    add_half_quads(g, lambda: {"TEXCOORD_0": g.accessor([0, 0, 1, 0, 1, 1, 0, 1], FLOAT, "VEC2"),
+                               "TANGENT": g.accessor([1, 0, 0, 1] * 4, FLOAT, "VEC4")})
+    g.write_gltf(out / "layer-textures.gltf")
+
+
 def texcoord1(out):
     """textureInfo.texCoord 1: see the docstring at the top."""
     g = Gltf()
@@ -952,7 +998,7 @@ def main():
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent / "scenes" / "gltf"
     out.mkdir(parents=True, exist_ok=True)
     for write in (modes, hierarchy, accessors, materials, cameras, no_camera, emissive, extensions, textures, alpha, emissive_texture,
-                  emissive_spot, instances, specular_textures, transmission_textures, texcoord1, lights, point_lamp, vertex_colors, unlit):
+                  emissive_spot, instances, specular_textures, transmission_textures, layer_textures, texcoord1, lights, point_lamp, vertex_colors, unlit):
         write(out)
 
 

@@ -28,6 +28,9 @@ std::uint32_t bit(std::uint32_t i) { return 1u << i; }
 constexpr const char* kLightKindNames[] = {"sphere", "quad", "triangle", "instance", "punctual"};
 static_assert(std::size(kLightKindNames) == gpu::LIGHT_KIND_PUNCTUAL + 1 && gpu::LIGHT_KIND_PUNCTUAL == gpu::PRIM_KIND_COUNT,
               "a name per bit of the LIGHTS mask");
+/// Names of the bits of the LAYERS mask (gpu::LAYER_COAT = bit 0, LAYER_SHEEN = bit 1).
+constexpr const char* kLayerNames[] = {"clearcoat", "sheen"};
+static_assert(gpu::LAYER_COAT == 1u && gpu::LAYER_SHEEN == 2u, "a name per bit of the LAYERS mask");
 }  // namespace
 
 std::vector<SpecConstant> Features::specTable() const {
@@ -64,6 +67,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_HAS_ALPHA, "HAS_ALPHA", alpha, on(alpha, "alpha")},
         {VKP_SPEC_HAS_INSTANCES, "HAS_INSTANCES", instances, on(instances, "instances")},
         {VKP_SPEC_HAS_VERTEX_COLORS, "HAS_VERTEX_COLORS", vertexColors, on(vertexColors, "vertex-colors")},
+        {VKP_SPEC_LAYERS, "LAYERS", layers, layers ? "layers:" + bitNames(layers, kLayerNames) : ""},
         {VKP_SPEC_WORKGROUP_X, "WORKGROUP_X", workgroupX, ""},  // the image does not depend on it
         {VKP_SPEC_WORKGROUP_Y, "WORKGROUP_Y", workgroupY, ""},
     };
@@ -102,6 +106,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         f.materials = bit(gpu::MAT_TYPE_COUNT) - 1u;
         f.emitters = f.defocus = f.environment = f.environmentMap = true;
         f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = f.vertexColors = true;
+        f.layers = gpu::LAYER_COAT | gpu::LAYER_SHEEN;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -122,6 +127,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
             f.materials |= bit(std::uint32_t(t.type));
         }
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;
+        if (m.type == MaterialType::Pbr) f.layers |= m.pbr.layers();
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;
     f.environment = hasEnvironmentLight(scene);

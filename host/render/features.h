@@ -35,6 +35,7 @@ struct Features {
     bool alpha = false;             ///< some material has alphaMode MASK or BLEND (lib/alpha.glsl)
     bool instances = false;         ///< two-level BVH: the scene has instanced meshes (shared/instance.h)
     bool vertexColors = false;      ///< glTF COLOR_0 tints some MAT_PBR material (lib/surface.glsl)
+    std::uint32_t layers = 0;       ///< gpu::LAYER_* over some MAT_PBR material (shared/layers.h)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

@@ -11,6 +11,7 @@
 #include "render/adaptive.h"
 #include "render/environment.h"
 #include "render/ggx_albedo_table.h"
+#include "render/sheen_albedo_table.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
 #include "render/texture_pack.h"
@@ -79,12 +80,16 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     a.frame.origin.w = gpu::rayOffsetScale(sceneExtent(bvh));
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
     for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
-        for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3}) a.materials.push_back(t);
-    static_assert(gpu::GPU_MATERIAL_TEXELS == 4, "one push_back per GpuMaterial member");
+        for (const glm::vec4& t : {m.m0, m.m1, m.m2, m.m3, m.m4, m.m5}) a.materials.push_back(t);
+    static_assert(gpu::GPU_MATERIAL_TEXELS == 6, "one push_back per GpuMaterial member");
     a.frame.counts.w = std::uint32_t(a.materials.size());
     if (a.features.hasMaterial(gpu::MAT_PBR)) {
         const std::vector<glm::vec4>& table = ggxAlbedoTable();
         a.materials.insert(a.materials.end(), table.begin(), table.end());
+        if (a.features.layers & gpu::LAYER_SHEEN) {  // the sheen albedo table right after it (lib/bindings.glsl)
+            const std::vector<glm::vec4>& sheen = sheenAlbedoTable();
+            a.materials.insert(a.materials.end(), sheen.begin(), sheen.end());
+        }
     }
     if (a.materials.empty()) a.materials.assign(1, glm::vec4(0.0f));
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);

@@ -11,7 +11,9 @@ namespace vkp::gpu {
 static_assert(sizeof(GpuPrim) == GPU_PRIM_TEXELS * 16, "GpuPrim: GPU_PRIM_TEXELS vec4 texels");
 static_assert(sizeof(GpuNode) == GPU_NODE_TEXELS * 16, "GpuNode: GPU_NODE_TEXELS vec4 texels");
 static_assert(sizeof(GpuMaterial) == GPU_MATERIAL_TEXELS * 16, "GpuMaterial: GPU_MATERIAL_TEXELS vec4 texels");
-static_assert(offsetof(GpuMaterial, m2) == 32 && offsetof(GpuMaterial, m3) == 48, "GpuMaterial texel order");
+static_assert(offsetof(GpuMaterial, m2) == 32 && offsetof(GpuMaterial, m3) == 48 && offsetof(GpuMaterial, m4) == 64 &&
+                  offsetof(GpuMaterial, m5) == 80,
+              "GpuMaterial texel order");
 static_assert(sizeof(GpuLight) == GPU_LIGHT_TEXELS * 16, "GpuLight: GPU_LIGHT_TEXELS vec4 texels");
 static_assert(sizeof(GpuPunctualLight) == GPU_PUNCTUAL_TEXELS * 16 && offsetof(GpuPunctualLight, q3) == 48,
               "GpuPunctualLight: GPU_PUNCTUAL_TEXELS vec4 texels, in order");
@@ -26,10 +28,12 @@ static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) =
 static_assert(sizeof(GpuPush) == 3 * 16 && offsetof(GpuPush, adaptive) == 16 && offsetof(GpuPush, band) == 32,
               "GpuPush: three uvec4 (push constants)");
 
-static_assert(MAT_TEX_TEXELS == 2 * TEX_SLOTS + 1 && MAT_TEX_ALPHA_TEXEL == 2 * TEX_SLOTS,
-              "texture record: two texels per slot, then the alpha texel");
+static_assert(MAT_TEX_TEXELS == 2 * TEX_SLOTS + 2 && MAT_TEX_ALPHA_TEXEL == 2 * TEX_SLOTS && MAT_TEX_LAYER_TEXEL == 2 * TEX_SLOTS + 1,
+              "texture record: two texels per slot, then the alpha texel, then the layer texel");
 static_assert(TEX_SLOT_BASE_COLOR == 0 && TEX_SLOT_METALLIC_ROUGHNESS == 1 && TEX_SLOT_NORMAL == 2 && TEX_SLOT_EMISSIVE == 3 &&
-                  TEX_SLOT_SPECULAR == 4 && TEX_SLOT_SPECULAR_COLOR == 5 && TEX_SLOT_TRANSMISSION == 6 && TEX_SLOTS == 7,
+                  TEX_SLOT_SPECULAR == 4 && TEX_SLOT_SPECULAR_COLOR == 5 && TEX_SLOT_TRANSMISSION == 6 &&
+                  TEX_SLOT_CLEARCOAT == 7 && TEX_SLOT_CLEARCOAT_ROUGHNESS == 8 && TEX_SLOT_CLEARCOAT_NORMAL == 9 &&
+                  TEX_SLOT_SHEEN_COLOR == 10 && TEX_SLOT_SHEEN_ROUGHNESS == 11 && TEX_SLOTS == 12,
               "texture record: slot order (host/render/texture_pack.cpp packs them in this order)");
 
 }  // namespace vkp::gpu

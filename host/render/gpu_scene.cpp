@@ -87,6 +87,11 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
             g.m2 = v4(m.pbr.specularColor, m.pbr.specular);
             // z: transmissionFactor where a texture decides per hit (transmissionTextured), else 0.
             g.m3 = glm::vec4(m.pbr.metallic, m.pbr.roughness, transmissionTextured(m) ? m.pbr.transmission : 0.0f, m.ior);
+            if (m.pbr.layers() != 0u) {  // clear coat and sheen (shared/layers.h)
+                g.m0.w = bitsf(flags | gpu::MATF_LAYERED);
+                g.m4 = glm::vec4(m.pbr.clearcoat, m.pbr.clearcoatRoughness, m.pbr.sheenRoughness, 0.0f);
+                g.m5 = v4(m.pbr.sheenColor, 0.0f);
+            }
         }
         out.push_back(g);
     }

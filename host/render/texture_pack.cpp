@@ -36,11 +36,31 @@ TextureRef emissiveTextureOf(const Material& original) {
     return TextureRef{};
 }
 
+/// The textures of a material's layers the kernel reads (those of a layer that is present).
+std::vector<const TextureRef*> layerTextures(const Material& m) {
+    std::vector<const TextureRef*> out;
+    if (m.type != MaterialType::Pbr) return out;
+    const std::uint32_t layers = m.pbr.layers();
+    if (layers & gpu::LAYER_COAT) {
+        out.push_back(&m.pbr.clearcoatTexture);
+        out.push_back(&m.pbr.clearcoatRoughnessTexture);
+        out.push_back(&m.pbr.clearcoatNormalTexture);
+    }
+    if (layers & gpu::LAYER_SHEEN) {
+        out.push_back(&m.pbr.sheenColorTexture);
+        out.push_back(&m.pbr.sheenRoughnessTexture);
+    }
+    return out;
+}
+
 bool materialReadsTextures(const Material& original) {
     const Material m = kernelMaterial(original);
-    if (m.type == MaterialType::Pbr)
+    if (m.type == MaterialType::Pbr) {
+        for (const TextureRef* t : layerTextures(m))
+            if (t->valid()) return true;
         return m.pbr.baseColorTexture.valid() || m.pbr.metallicRoughnessTexture.valid() || m.pbr.normalTexture.valid() ||
                m.pbr.specularTexture.valid() || m.pbr.specularColorTexture.valid() || transmissionTextured(m);
+    }
     return emissiveTextureOf(original).valid();
 }
 
@@ -82,6 +102,8 @@ bool sceneHasTexCoord1(const Scene& scene) {
         if (one(p.baseColorTexture) || one(p.metallicRoughnessTexture) || one(p.normalTexture) || one(p.specularTexture) ||
             one(p.specularColorTexture) || (transmissionTextured(m) && one(p.transmissionTexture)))
             return true;
+        for (const TextureRef* t : layerTextures(m))
+            if (one(*t)) return true;
     }
     return false;
 }
@@ -137,6 +159,15 @@ TexturePack packTextures(const Scene& scene) {
         packSlot(transmissionTextured(m) ? m.pbr.transmissionTexture : none, rec + 2 * kTexSlotTransmission);
         rec[gpu::MAT_TEX_ALPHA_TEXEL] = glm::uvec4(std::uint32_t(m.pbr.alphaMode), bits(m.pbr.alphaCutoff), bits(m.pbr.normalScale),
                                         bits(m.pbr.baseColor.w));
+        // Clear coat and sheen: the kernel reads these slots only for a material with the layer.
+        const std::uint32_t layers = pbr ? m.pbr.layers() : 0u;
+        const bool coat = (layers & gpu::LAYER_COAT) != 0u, sheen = (layers & gpu::LAYER_SHEEN) != 0u;
+        packSlot(coat ? m.pbr.clearcoatTexture : none, rec + 2 * gpu::TEX_SLOT_CLEARCOAT);
+        packSlot(coat ? m.pbr.clearcoatRoughnessTexture : none, rec + 2 * gpu::TEX_SLOT_CLEARCOAT_ROUGHNESS);
+        packSlot(coat ? m.pbr.clearcoatNormalTexture : none, rec + 2 * gpu::TEX_SLOT_CLEARCOAT_NORMAL);
+        packSlot(sheen ? m.pbr.sheenColorTexture : none, rec + 2 * gpu::TEX_SLOT_SHEEN_COLOR);
+        packSlot(sheen ? m.pbr.sheenRoughnessTexture : none, rec + 2 * gpu::TEX_SLOT_SHEEN_ROUGHNESS);
+        rec[gpu::MAT_TEX_LAYER_TEXEL] = glm::uvec4(bits(m.pbr.clearcoatNormalScale), 0u, 0u, 0u);
     }
     std::vector<std::uint32_t> imageStart(scene.images.size(), 0);
     for (std::size_t i = 0; i < scene.images.size(); ++i) {

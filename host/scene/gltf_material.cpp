@@ -262,6 +262,23 @@ Material MaterialMapper::convert(int m) {
         p.transmission = float(number(t, "transmissionFactor", 0.0, 0.0, 1.0, f, tp));
         p.transmissionTexture = extensionTexture(t, "transmissionTexture", false, tp);
     }
+    if (const Value* c = extension(g.extensions, "KHR_materials_clearcoat", f, place)) {
+        const std::string cp = ext + "KHR_materials_clearcoat";
+        p.clearcoat = float(number(c, "clearcoatFactor", 0.0, 0.0, 1.0, f, cp));
+        p.clearcoatTexture = extensionTexture(c, "clearcoatTexture", false, cp);
+        p.clearcoatRoughness = float(number(c, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0, f, cp));
+        p.clearcoatRoughnessTexture = extensionTexture(c, "clearcoatRoughnessTexture", false, cp);
+        p.clearcoatNormalTexture = extensionTexture(c, "clearcoatNormalTexture", false, cp);
+        if (const Value* nt = member(*c, "clearcoatNormalTexture"))
+            p.clearcoatNormalScale = float(number(nt, "scale", 1.0, -kInf, kInf, f, cp + "/clearcoatNormalTexture"));
+    }
+    if (const Value* s = extension(g.extensions, "KHR_materials_sheen", f, place)) {
+        const std::string sp = ext + "KHR_materials_sheen";
+        p.sheenColor = factor<3>(numbers(s, "sheenColorFactor", {0.0, 0.0, 0.0}, f, sp), 0.0, 1.0, f, sp + "/sheenColorFactor");
+        p.sheenColorTexture = extensionTexture(s, "sheenColorTexture", true, sp);
+        p.sheenRoughness = float(number(s, "sheenRoughnessFactor", 0.0, 0.0, 1.0, f, sp));
+        p.sheenRoughnessTexture = extensionTexture(s, "sheenRoughnessTexture", false, sp);
+    }
     out.ior = 1.5f;
     if (const Value* i = extension(g.extensions, "KHR_materials_ior", f, place)) {
         out.ior = float(number(i, "ior", 1.5, 0.0, kInf, f, ext + "KHR_materials_ior"));
@@ -294,6 +311,8 @@ Material MaterialMapper::convert(int m) {
         p.specularColorTexture = TextureRef{};
         p.transmission = 0.0f;
         p.transmissionTexture = TextureRef{};
+        p.clearcoat = 0.0f;
+        p.sheenColor = glm::vec3(0.0f);
     }
     return out;
 }

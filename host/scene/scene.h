@@ -63,6 +63,22 @@ struct PbrParams {
     TextureRef specularColorTexture;       ///< sRGB colour
     float transmission = 0.0f;             ///< KHR_materials_transmission transmissionFactor in [0,1]
     TextureRef transmissionTexture;        ///< linear, factor in R
+    float clearcoat = 0.0f;                ///< KHR_materials_clearcoat clearcoatFactor in [0,1] (0: no coat)
+    TextureRef clearcoatTexture;           ///< linear, factor in R
+    float clearcoatRoughness = 0.0f;       ///< clearcoatRoughnessFactor in [0,1]
+    TextureRef clearcoatRoughnessTexture;  ///< linear, factor in G
+    TextureRef clearcoatNormalTexture;     ///< linear tangent-space normal of the coat (else: no normal map on it)
+    float clearcoatNormalScale = 1.0f;     ///< clearcoatNormalTexture.scale
+    glm::vec3 sheenColor{0.0f};            ///< KHR_materials_sheen sheenColorFactor, linear, [0,1] (0: no sheen)
+    TextureRef sheenColorTexture;          ///< sRGB colour
+    float sheenRoughness = 0.0f;           ///< sheenRoughnessFactor in [0,1]
+    TextureRef sheenRoughnessTexture;      ///< linear, factor in A
+    /// The layers over the BRDF (gpu::LAYER_COAT, LAYER_SHEEN bits; shaders/shared/layers.h):
+    /// those whose factor is above 0 (a texture only scales its factor).
+    std::uint32_t layers() const {
+        return (clearcoat > 0.0f ? gpu::LAYER_COAT : 0u) |
+               (sheenColor.x > 0.0f || sheenColor.y > 0.0f || sheenColor.z > 0.0f ? gpu::LAYER_SHEEN : 0u);
+    }
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;              ///< Mask: alpha < cutoff is a hole
     /// KHR_materials_unlit: the loader made it an emitter of the base colour (Material::emit, the

@@ -5,6 +5,7 @@
 #define VKP_BINDINGS_GLSL
 #include "shared/gpu_types.h"
 #include "shared/kernel_interface.h"
+#include "shared/microfacet.h"
 #include "lib/spec_constants.glsl"
 
 // The shared code compiles out what a scene does not have (plain `if`s on these): primitive kinds
@@ -13,6 +14,7 @@
 #define VKP_HAS_PARALLELOGRAMS HAS_PARALLELOGRAMS
 #define VKP_HAS_MATERIAL(t) (((MATERIALS >> (t)) & 1u) != 0u)
 #define VKP_SHADING_NORMALS HAS_VERTEX_ATTRIBUTES
+#define VKP_HAS_LAYERS HAS_LAYERS
 
 layout(set = 0, binding = VKP_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
 /// The scale of the ray offset's absolute floor for this scene (shared/ray_offset.h rayOffsetScale).
@@ -65,9 +67,15 @@ GpuMaterial fetchMaterial(uint i) {
     m.m1 = fetchF(uMaterials, base + 1);
     m.m2 = vec4(0.0f);
     m.m3 = vec4(0.0f);
+    m.m4 = vec4(0.0f);
+    m.m5 = vec4(0.0f);
     if (HAS_PBR) {  // only MAT_PBR reads them: other variants skip the two fetches
         m.m2 = fetchF(uMaterials, base + 2);
         m.m3 = fetchF(uMaterials, base + 3);
+        if (HAS_LAYERS && (floatBitsToUint(m.m0.w) & MATF_LAYERED) != 0u) {
+            m.m4 = fetchF(uMaterials, base + 4);
+            m.m5 = fetchF(uMaterials, base + 5);
+        }
     }
     return m;
 }
@@ -75,6 +83,9 @@ GpuMaterial fetchMaterial(uint i) {
 /// shared/microfacet.h's table access: the GGX albedo table follows the materials in their texel
 /// buffer (host/render/ggx_albedo_table.cpp), at texel frame.counts.w.
 vec4 ggxAlbedoFetch(uint t) { return fetchF(uMaterials, int(frame.counts.w + t)); }
+/// shared/layers.h's table access: the sheen albedo table follows the GGX table (variants with
+/// LAYER_SHEEN; host/render/sheen_albedo_table.cpp).
+vec4 sheenAlbedoFetch(uint t) { return fetchF(uMaterials, int(frame.counts.w + GGX_ALBEDO_N * GGX_ALBEDO_N + t)); }
 
 GpuLight fetchLight(uint i) {
     GpuLight l;

@@ -19,6 +19,7 @@ struct SurfaceHit {
     vec3 ns;            ///< ng turned to face the arriving ray
     bool frontFace;     ///< the ray arrived on the front
     vec3 nShade;        ///< shading normal (lib/surface.glsl; ns where there is none)
+    vec3 nCoat;         ///< a layered material's clear-coat normal (lib/surface.glsl; else ns)
     GpuMaterial m;      ///< the kernel material, textures applied
     float extraOffset;  ///< an instance's part of the ray-origin offset (shared/instance.h; 0 otherwise)
 };
@@ -46,7 +47,7 @@ bool findSurface(vec3 o, vec3 d, out SurfaceHit h, inout uint passes) {
     h.frontFace = dot(d, h.ng) < 0.0f;
     h.ns = h.frontFace ? h.ng : -h.ng;
     h.m = fetchMaterial(primMaterial(h.p));
-    h.nShade = surfaceAt(h.prim, h.p, abAttr, h.ns, d, primMaterial(h.p), h.m, inst);
+    h.nShade = surfaceAt(h.prim, h.p, abAttr, h.ns, d, primMaterial(h.p), h.m, inst, h.nCoat);
     return true;
 }
 

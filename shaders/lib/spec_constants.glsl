@@ -32,6 +32,9 @@ layout(constant_id = VKP_SPEC_HAS_TEXCOORD1) const bool HAS_TEXCOORD1 = true;
 layout(constant_id = VKP_SPEC_HAS_ALPHA) const bool HAS_ALPHA = true;          // lib/alpha.glsl
 layout(constant_id = VKP_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // shared/instance.h
 layout(constant_id = VKP_SPEC_HAS_VERTEX_COLORS) const bool HAS_VERTEX_COLORS = true;  // COLOR_0 (lib/surface.glsl)
+// Clear coat and sheen over the glTF BRDF (LAYER_* bits; shared/layers.h): their material texels,
+// textures, coat normal and lobes run only in variants with some.
+layout(constant_id = VKP_SPEC_LAYERS) const uint LAYERS = 0xffffffffu;
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;
@@ -52,6 +55,12 @@ const bool HAS_TRIANGLE_LIGHTS = (LIGHTS & (1u << PRIM_TRIANGLE)) != 0u;
 // Point, spot and directional lights (shared/punctual_light.h): delta lights, sampled by
 // next-event estimation under every sampler.
 const bool HAS_PUNCTUAL_LIGHTS = (LIGHTS & (1u << LIGHT_KIND_PUNCTUAL)) != 0u;
+// Layers count only with MAT_PBR (integer arithmetic: glslang turns && of specialization
+// constants into control flow, which is not a constant expression).
+const uint LAYERS_USED = LAYERS & (LAYER_COAT | LAYER_SHEEN) & (0u - ((MATERIALS >> MAT_PBR) & 1u));
+const bool HAS_COAT = (LAYERS_USED & LAYER_COAT) != 0u;
+const bool HAS_SHEEN = (LAYERS_USED & LAYER_SHEEN) != 0u;
+const bool HAS_LAYERS = LAYERS_USED != 0u;
 // Something for the power-proportional pick: an emitting surface or a punctual light.
 const bool HAS_PICKED_LIGHTS = HAS_EMITTERS || HAS_PUNCTUAL_LIGHTS;
 

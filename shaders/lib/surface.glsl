@@ -88,14 +88,56 @@ void becomeTransmitted(inout GpuMaterial m) {
     }
 }
 
+/// The tangent frame (tt, bt) of a mesh triangle at surface parameters ab, interpolated from its
+/// attribute record at base and made orthogonal to n (Gram-Schmidt); false where it degenerates.
+/// An instance's tangents are taken into the world first (shared/instance.h).
+bool tangentFrame(int base, vec2 ab, bool instanced, GpuInstance ins, vec3 n, out vec3 tt, out vec3 bt) {
+    vec4 t0 = fetchF(uAttributes, base + 5);
+    vec4 t1 = fetchF(uAttributes, base + 6);
+    vec4 t2 = fetchF(uAttributes, base + 7);
+    if (instanced) {
+        t0 = instanceTangentToWorld(ins, t0);
+        t1 = instanceTangentToWorld(ins, t1);
+        t2 = instanceTangentToWorld(ins, t2);
+    }
+    vec4 t = (1.0f - ab.x - ab.y) * t0 + ab.x * t1 + ab.y * t2;
+    tt = t.xyz - n * dot(n, t.xyz);
+    float tl = length(tt);
+    bt = vec3(0.0f);
+    if (!(tl > 0.0f)) return false;
+    tt /= tl;
+    bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
+    return true;
+}
+
+/// n perturbed by the tangent-space normal map texel c (linear, [0,1] per channel) with
+/// normalTexture.scale `scale` in the frame (tt, bt, n) (glTF 2.0 sec. 3.9.3); n where it degenerates.
+vec3 normalMapped(vec3 n, vec3 tt, vec3 bt, vec4 c, float scale) {
+    vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
+    vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
+    float nl = length(nm);
+    return nl > 0.0f ? nm / nl : n;
+}
+
+/// A shading normal turned to the side the ray arrived on (the side of ns), or ns itself where
+/// there is none or the viewer would be below its horizon (file comment).
+vec3 facingNormal(vec3 n, bool hasN, vec3 ns, vec3 d) {
+    if (!hasN) return ns;
+    if (dot(n, ns) < 0.0f) n = -n;     // the side the ray arrived on
+    return dot(n, d) < 0.0f ? n : ns;  // viewer below the shading horizon: geometric
+}
+
 /// At a hit on primitive `prim` (p, surface parameters ab, geometric normal ns facing the incoming
 /// direction d, material index mi): applies the textures of a MAT_PBR material m (base colour x
-/// texture RGB, metallic x B, roughness x G) and returns the shading normal (ns where there is
-/// none, see above). An instance's triangle (inst != GPU_NO_INSTANCE, shared/instance.h): p is the
+/// texture RGB, metallic x B, roughness x G, and the clear coat's and sheen's) and returns the
+/// shading normal (ns where there is none, see above); nCoat gets the clear coat's normal
+/// (KHR_materials_clearcoat: its own normal map, else the interpolated normal without the base's
+/// normal map). An instance's triangle (inst != GPU_NO_INSTANCE, shared/instance.h): p is the
 /// triangle placed in the world (instanceWorldPrim), ab its object-space surface parameters (the
 /// order of its attribute record), and each corner's normal and tangent is taken into the world
 /// (inverse transpose, linear map; unit length) before interpolating, as the flattening loader does.
-vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout GpuMaterial m, uint inst) {
+vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout GpuMaterial m, uint inst, out vec3 nCoat) {
+    nCoat = ns;
     if (!HAS_VERTEX_ATTRIBUTES || primKind(p) != PRIM_TRIANGLE) return ns;
     int base = int(prim * ATTR_TEXELS);
     vec4 a0 = fetchF(uAttributes, base);
@@ -121,7 +163,10 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         hasN = len > 0.0f;
         if (hasN) n = ni / len;  // the file's orientation (turned to the ray's side below)
     }
+    vec3 nc = n;  // the coat's normal: the interpolated one unless the coat has a normal map
+    bool hasNc = hasN;
     uint mtype = floatBitsToUint(m.m0.w) & 15u;
+    bool layered = HAS_LAYERS && (floatBitsToUint(m.m0.w) & MATF_LAYERED) != 0u;
     if (HAS_TEXTURES && mtype == MAT_PBR && (flags & (ATTR_HAS_UV | ATTR_HAS_UV1)) != 0u) {
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
         vec2 uv1 = attributeUv1(a1, ab, uv);
@@ -129,6 +174,7 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         vec4 c;
         if (HAS_EXTENSION_TEXTURES && transmitsAt(rec, uv, uv1, m)) {
             becomeTransmitted(m);  // what a constant transmissionFactor > 0 renders as: no other texture applies
+            layered = false;
         } else {
             if (sampleSlot(rec, TEX_SLOT_BASE_COLOR, uv, uv1, c)) m.m0.xyz *= c.xyz;
             if (sampleSlot(rec, TEX_SLOT_METALLIC_ROUGHNESS, uv, uv1, c)) {
@@ -141,31 +187,28 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
                 if (sampleSlot(rec, TEX_SLOT_SPECULAR, uv, uv1, c)) m.m2.w *= c.w;
                 if (sampleSlot(rec, TEX_SLOT_SPECULAR_COLOR, uv, uv1, c)) m.m2.xyz *= c.xyz;
             }
-            if ((flags & ATTR_HAS_TANGENT) != 0u && sampleSlot(rec, TEX_SLOT_NORMAL, uv, uv1, c)) {
-                // Without NORMAL the map perturbs the flat normal (glTF: flat shading), front = winding.
-                if (!hasN) n = normalize(cross(primEdge1(p), primEdge2(p)));
-                vec4 t0 = fetchF(uAttributes, base + 5);
-                vec4 t1 = fetchF(uAttributes, base + 6);
-                vec4 t2 = fetchF(uAttributes, base + 7);
-                if (instanced) {
-                    t0 = instanceTangentToWorld(ins, t0);
-                    t1 = instanceTangentToWorld(ins, t1);
-                    t2 = instanceTangentToWorld(ins, t2);
-                }
-                vec4 t = w0 * t0 + ab.x * t1 + ab.y * t2;
-                vec3 tt = t.xyz - n * dot(n, t.xyz);  // Gram-Schmidt against the interpolated normal
-                float tl = length(tt);
-                if (tl > 0.0f) {
-                    tt /= tl;
-                    vec3 bt = (t.w < 0.0f ? -1.0f : 1.0f) * cross(n, tt);
+            if (layered) {
+                // KHR_materials_clearcoat: factor x R, roughness x G; KHR_materials_sheen: colour x
+                // RGB (sRGB-decoded), roughness x A.
+                if (HAS_COAT && sampleSlot(rec, TEX_SLOT_CLEARCOAT, uv, uv1, c)) m.m4.x *= c.x;
+                if (HAS_COAT && sampleSlot(rec, TEX_SLOT_CLEARCOAT_ROUGHNESS, uv, uv1, c)) m.m4.y *= c.y;
+                if (HAS_SHEEN && sampleSlot(rec, TEX_SLOT_SHEEN_COLOR, uv, uv1, c)) m.m5.xyz *= c.xyz;
+                if (HAS_SHEEN && sampleSlot(rec, TEX_SLOT_SHEEN_ROUGHNESS, uv, uv1, c)) m.m4.z *= c.w;
+            }
+            if ((flags & ATTR_HAS_TANGENT) != 0u) {
+                // Without NORMAL a map perturbs the flat normal (glTF: flat shading), front = winding.
+                vec3 nFlat = hasN ? n : normalize(cross(primEdge1(p), primEdge2(p)));
+                vec3 tt, bt;
+                if (sampleSlot(rec, TEX_SLOT_NORMAL, uv, uv1, c) && tangentFrame(base, ab, instanced, ins, nFlat, tt, bt)) {
                     float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL)).z);
-                    vec3 tn = vec3((2.0f * c.x - 1.0f) * scale, (2.0f * c.y - 1.0f) * scale, 2.0f * c.z - 1.0f);
-                    vec3 nm = tt * tn.x + bt * tn.y + n * tn.z;
-                    float nl = length(nm);
-                    if (nl > 0.0f) {
-                        n = nm / nl;
-                        hasN = true;
-                    }
+                    n = normalMapped(nFlat, tt, bt, c, scale);
+                    hasN = true;
+                }
+                if (HAS_COAT && layered && sampleSlot(rec, TEX_SLOT_CLEARCOAT_NORMAL, uv, uv1, c) &&
+                    tangentFrame(base, ab, instanced, ins, nFlat, tt, bt)) {
+                    float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_LAYER_TEXEL)).x);
+                    nc = normalMapped(nFlat, tt, bt, c, scale);
+                    hasNc = true;
                 }
             }
         }
@@ -177,9 +220,8 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
         vec2 uv = w0 * a0.xy + ab.x * a0.zw + ab.y * a1.xy;
         if (sampleSlot(1u + MAT_TEX_TEXELS * mi, TEX_SLOT_EMISSIVE, uv, attributeUv1(a1, ab, uv), c)) m.m1.xyz *= c.xyz;
     }
-    if (!hasN) return ns;
-    if (dot(n, ns) < 0.0f) n = -n;              // the side the ray arrived on
-    return dot(n, d) < 0.0f ? n : ns;           // viewer below the shading horizon: geometric
+    if (layered) nCoat = facingNormal(nc, hasNc, ns, d);
+    return facingNormal(n, hasN, ns, d);
 }
 
 /// The emissive texture at a point x sampled on light primitive `prim` (next-event estimation):

@@ -10,8 +10,8 @@
 //                shared/sample_stream.h;
 //   sampleBsdf / pdfBsdf / evalBsdf   the sampling triple (directions in world space);
 //   bsdfCosine   the cosine of a direction with the shading normal, 0 where f is 0 by geometry.
-// The materials' own math lives in shared/scatter.h (the books' materials) and shared/microfacet.h
-// (the glTF BRDF); each has its own statistical tests, and tests/stats/test_bsdf_stats.cpp tests
+// The materials' own math lives in shared/scatter.h (the books' materials), shared/microfacet.h
+// (the glTF BRDF) and shared/layers.h (its clear coat and sheen); each has its own statistical tests, and tests/stats/test_bsdf_stats.cpp tests
 // this dispatch. C++ and GLSL (shared/glsl_compat.h): host tests run the kernel's code.
 //
 // Conventions: dIn is the unit direction of the ray that arrives (towards the surface); n is the
@@ -22,10 +22,13 @@
 // The includer may define, before including this file:
 //   VKP_HAS_MATERIAL(t)  true if kernel material type t can occur (default: every type); the
 //                        kernel's is a specialization constant (lib/spec_constants.glsl);
-//   VKP_SHADING_NORMALS  false if shading normals always equal geometric ones (default true).
+//   VKP_SHADING_NORMALS  false if shading normals always equal geometric ones (default true);
+//   VKP_HAS_LAYERS       true if a MAT_PBR material may have a clear coat or sheen (shared/layers.h;
+//                        default true).
 #ifndef VKP_BSDF_H
 #define VKP_BSDF_H
 #include "gpu_types.h"
+#include "layers.h"
 #include "microfacet.h"
 #include "onb.h"
 #include "sample_stream.h"
@@ -37,6 +40,9 @@
 #endif
 #ifndef VKP_SHADING_NORMALS
 #define VKP_SHADING_NORMALS true
+#endif
+#ifndef VKP_HAS_LAYERS
+#define VKP_HAS_LAYERS true
 #endif
 
 /// A glossy BSDF (bsdfIsGlossy) can occur: the `light` sampler then needs its MIS branches.
@@ -55,12 +61,25 @@ struct Bsdf {
     Onb frame;          ///< MAT_PBR: the shading frame, z = the shading normal
     vec3 v;             ///< MAT_PBR: the direction to the viewer in that frame
     GltfBrdf gltf;      ///< MAT_PBR
+    bool layered;       ///< MAT_PBR with a clear coat or sheen (MATF_LAYERED): layers, coatFrame
+    GltfLayers layers;  ///< the coat and sheen (shared/layers.h)
+    Onb coatFrame;      ///< the coat's frame, z = the coat normal
 };
 
+/// The layered material of b (b.layered), for shared/layers.h.
+VKP_FN LayeredBrdf bsdfLayered(Bsdf b) {
+    LayeredBrdf m;
+    m.base = b.gltf;
+    m.layers = b.layers;
+    m.frame = b.frame;
+    m.coatFrame = b.coatFrame;
+    return m;
+}
+
 /// The BSDF of kernel material m (shared/gpu_types.h, textures already applied) at a hit with
-/// geometric normal n (facing the arriving ray dIn), shading normal nShade (n where there is none)
-/// and frontFace.
-VKP_FN Bsdf makeBsdf(GpuMaterial m, vec3 n, vec3 nShade, vec3 dIn, bool frontFace) {
+/// geometric normal n (facing the arriving ray dIn), shading normal nShade (n where there is none),
+/// the coat's normal nCoat (a layered MAT_PBR material; lib/surface.glsl) and frontFace.
+VKP_FN Bsdf makeBsdf(GpuMaterial m, vec3 n, vec3 nShade, vec3 nCoat, vec3 dIn, bool frontFace) {
     Bsdf b;
     uint flags = floatBitsToUint(m.m0.w);
     b.type = flags & MAT_TYPE_MASK;
@@ -86,7 +105,20 @@ VKP_FN Bsdf makeBsdf(GpuMaterial m, vec3 n, vec3 nShade, vec3 dIn, bool frontFac
         b.gltf.f0 = vec3(0.0f);
         b.gltf.f90 = 0.0f;
     }
+    b.layered = VKP_HAS_LAYERS && VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR && (flags & MATF_LAYERED) != 0u;
+    if (b.layered) {
+        b.layers = makeGltfLayers(m.m4.x, m.m4.y, vec3(m.m5.x, m.m5.y, m.m5.z), m.m4.z);
+        b.coatFrame = onbFromNormal(nCoat);
+    } else {
+        b.layers = makeGltfLayers(0.0f, 1.0f, vec3(0.0f), 1.0f);
+        b.coatFrame = b.frame;
+    }
     return b;
+}
+
+/// makeBsdf with the coat normal equal to the shading normal.
+VKP_FN Bsdf makeBsdf(GpuMaterial m, vec3 n, vec3 nShade, vec3 dIn, bool frontFace) {
+    return makeBsdf(m, n, nShade, nShade, dIn, frontFace);
 }
 
 /// A specular (delta) BSDF: metal's fuzzy mirror and the dielectric's reflect-or-refract have no
@@ -127,6 +159,7 @@ VKP_FN bool belowGeometric(Bsdf b, vec3 dir) { return VKP_SHADING_NORMALS && !(d
 VKP_FN float bsdfCosine(Bsdf b, vec3 dir) {
     if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR) {
         float c = toLocal(b.frame, dir).z;
+        if (b.layered) c = max(c, toLocal(b.coatFrame, dir).z);  // the coat's lobe lives in its own frame
         return belowGeometric(b, dir) ? 0.0f : c;
     }
     if (bsdfIsDelta(b)) return 0.0f;
@@ -138,6 +171,7 @@ VKP_FN float bsdfCosine(Bsdf b, vec3 dir) {
 /// delta BSDFs (no light sample can meet their lobe) and for directions below the surface.
 VKP_FN vec3 evalBsdf(Bsdf b, vec3 scale, vec3 dir) {
     if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR) {
+        if (b.layered) return belowGeometric(b, dir) ? vec3(0.0f) : scale * evalLayeredCos(bsdfLayered(b), -b.dIn, dir);
         vec3 l = toLocal(b.frame, dir);
         if (!(l.z > 0.0f) || belowGeometric(b, dir)) return vec3(0.0f);
         return scale * evalGltfBrdf(b.gltf, b.v, l) * l.z;
@@ -149,7 +183,10 @@ VKP_FN vec3 evalBsdf(Bsdf b, vec3 scale, vec3 dir) {
 
 /// Solid-angle density (sr^-1) with which sampleBsdf produces dir; 0 for delta BSDFs.
 VKP_FN float pdfBsdf(Bsdf b, vec3 dir) {
-    if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR) return pdfGltfBrdf(b.gltf, b.v, toLocal(b.frame, dir));
+    if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR) {
+        if (b.layered) return pdfLayered(bsdfLayered(b), -b.dIn, dir);
+        return pdfGltfBrdf(b.gltf, b.v, toLocal(b.frame, dir));
+    }
     if (bsdfIsDelta(b)) return 0.0f;
     return pdfCosineHemisphere(dot(dir, b.n));
 }
@@ -170,6 +207,14 @@ VKP_FN bool sampleBsdf(Bsdf b, vec3 u, OUT(vec3) dir, OUT(float) pdf, OUT(vec3) 
     if (VKP_HAS_MATERIAL(MAT_DIELECTRIC) && b.type == MAT_DIELECTRIC) {
         dir = scatterDielectric(b.dIn, b.n, b.frontFace, b.param, b.fresnelExact, u.x);
         weight = vec3(1.0f);
+        return true;
+    }
+    if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR && b.layered) {
+        dir = sampleLayered(bsdfLayered(b), -b.dIn, u, pdf);
+        if (!(pdf > 0.0f) || belowGeometric(b, dir)) return false;
+        vec3 fc = evalLayeredCos(bsdfLayered(b), -b.dIn, dir);
+        if (!(max(fc.x, max(fc.y, fc.z)) > 0.0f)) return false;
+        weight = fc / pdf;
         return true;
     }
     if (VKP_HAS_MATERIAL(MAT_PBR) && b.type == MAT_PBR) {

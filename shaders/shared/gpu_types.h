@@ -51,13 +51,19 @@ const uint GPU_NODE_EMPTY = 0xffffffffu;
 //    transmissionFactor when a transmissionTexture decides per hit (host transmissionTextured),
 //    else 0; w = KHR_materials_ior ior
 // The kernel fetches m2 and m3 only in variants with MAT_PBR (shaders/lib/bindings.glsl).
+// m4 (pbr with MATF_LAYERED): x = KHR_materials_clearcoat clearcoatFactor, y =
+//    clearcoatRoughnessFactor, z = KHR_materials_sheen sheenRoughnessFactor, w = 0
+// m5 (pbr with MATF_LAYERED): xyz = sheenColorFactor (linear RGB), w = 0
+// The kernel fetches m4 and m5 only in variants with LAYERS, for materials with MATF_LAYERED.
 struct GpuMaterial {
     vec4 m0;
     vec4 m1;
     vec4 m2;
     vec4 m3;
+    vec4 m4;
+    vec4 m5;
 };
-const uint GPU_MATERIAL_TEXELS = 4u;
+const uint GPU_MATERIAL_TEXELS = 6u;
 
 // ---- Sampled objects ("lights", 1 texel) -------------------------------------------------------
 // The lights buffer holds, in order: one GpuLight per sampled object (GpuFrame::counts.x of them:

@@ -53,8 +53,9 @@
 #define VKP_SPEC_HAS_ALPHA 15              // bool: some material has alphaMode MASK or BLEND
 #define VKP_SPEC_HAS_INSTANCES 16          // bool: a two-level BVH (shared/instance.h)
 #define VKP_SPEC_HAS_VERTEX_COLORS 17      // bool: glTF COLOR_0 tints some MAT_PBR material
-#define VKP_SPEC_WORKGROUP_X 18            // uint: local_size_x (`--workgroup`)
-#define VKP_SPEC_WORKGROUP_Y 19            // uint: local_size_y
-#define VKP_SPEC_COUNT 20
+#define VKP_SPEC_LAYERS 18                 // uint: LAYER_* over some MAT_PBR material (shared/layers.h)
+#define VKP_SPEC_WORKGROUP_X 19            // uint: local_size_x (`--workgroup`)
+#define VKP_SPEC_WORKGROUP_Y 20            // uint: local_size_y
+#define VKP_SPEC_COUNT 21
 
 #endif

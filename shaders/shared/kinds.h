@@ -28,6 +28,11 @@ const uint MAT_TYPE_MASK = 15u;  // the type's bits of the flags word
 const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
 const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
 const uint MATF_EMITS = 64u;          // emit != 0
+const uint MATF_LAYERED = 128u;       // pbr: a clear coat or sheen (GpuMaterial m4, m5; shared/layers.h)
+
+// ---- Layers over the glTF BRDF (specialization constant LAYERS; shared/layers.h) ----------------
+const uint LAYER_COAT = 1u;   // KHR_materials_clearcoat
+const uint LAYER_SHEEN = 2u;  // KHR_materials_sheen
 
 // ---- Punctual lights (shared/punctual_light.h): the kind in GpuPunctualLight::q0.w ----------------
 const uint PUNCTUAL_POINT = 0u;

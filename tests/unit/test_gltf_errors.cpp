@@ -229,6 +229,24 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
          kPrim + "has no TEXCOORD_1, but its material \"m\" reads it (normalTexture.texCoord 1)"},
         {"texcoord1_accessor_missing", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 7; },
          "accessor 7 (TEXCOORD_1 of mesh 0 (\"tri\") primitive 0): does not exist"},
+        {"clearcoat_factor_range",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 2}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/extensions/KHR_materials_clearcoat/clearcoatFactor: must be in [0, 1] (got 2)"},
+        {"sheen_color_range",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, -1, 0]}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/extensions/KHR_materials_sheen/sheenColorFactor/1: must be in [0, 1] (got -1)"},
+        {"clearcoat_normal_texture_missing",
+         [](Json& d, Bytes&) {
+             d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatNormalTexture": {"index": 4}}}}])");
+             d["meshes"][0]["primitives"][0]["material"] = 0;
+         },
+         "material 0 (\"m\")/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/index: texture 4 does not exist"},
         {"specular_texture_missing",
          [](Json& d, Bytes&) {
              d["materials"] = Json::parse(R"([{"name": "m", "extensions": {"KHR_materials_specular": {"specularColorTexture": {"index": 3}}}}])");

@@ -303,3 +303,41 @@ TEST(GltfMaterials, UnlitEmitsItsBaseColour) {
 }
 
 }  // namespace
+
+namespace vkp {
+namespace {
+// KHR_materials_clearcoat and KHR_materials_sheen (github.com/KhronosGroup/glTF, extensions/2.0/
+// Khronos/KHR_materials_clearcoat and KHR_materials_sheen): factors, and textures with their
+// colour spaces (sheenColorTexture sRGB, the others linear); scenes/gltf/layer-textures.gltf.
+TEST(GltfLayers, ClearcoatAndSheenAreReadWithTheirColourSpaces) {
+    const Scene s = loadSceneGltf(gltfScene("layer-textures.gltf"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    ASSERT_EQ(s.materials.size(), 5u);
+    const auto texture = [&](const TextureRef& r) -> const Texture& { return s.textures.at(std::size_t(r.texture)); };
+    const Material& coat = s.materials[0];
+    EXPECT_EQ(coat.name, "clearcoat-half");
+    EXPECT_EQ(coat.pbr.clearcoat, 1.0f);
+    EXPECT_FLOAT_EQ(coat.pbr.clearcoatRoughness, 0.2f);
+    ASSERT_TRUE(coat.pbr.clearcoatTexture.valid());
+    EXPECT_FALSE(texture(coat.pbr.clearcoatTexture).srgb);
+    EXPECT_EQ(coat.pbr.layers(), gpu::LAYER_COAT);
+    const Material& coatRoughness = s.materials[1];
+    ASSERT_TRUE(coatRoughness.pbr.clearcoatRoughnessTexture.valid());
+    EXPECT_FALSE(texture(coatRoughness.pbr.clearcoatRoughnessTexture).srgb);
+    const Material& sheen = s.materials[2];
+    EXPECT_EQ(sheen.pbr.sheenColor, glm::vec3(1.0f));
+    EXPECT_FLOAT_EQ(sheen.pbr.sheenRoughness, 0.5f);
+    ASSERT_TRUE(sheen.pbr.sheenColorTexture.valid());
+    EXPECT_TRUE(texture(sheen.pbr.sheenColorTexture).srgb);
+    EXPECT_EQ(sheen.pbr.layers(), gpu::LAYER_SHEEN);
+    const Material& sheenRoughness = s.materials[3];
+    ASSERT_TRUE(sheenRoughness.pbr.sheenRoughnessTexture.valid());
+    EXPECT_FALSE(texture(sheenRoughness.pbr.sheenRoughnessTexture).srgb);
+    const Material& normal = s.materials[4];
+    ASSERT_TRUE(normal.pbr.clearcoatNormalTexture.valid());
+    EXPECT_FALSE(texture(normal.pbr.clearcoatNormalTexture).srgb);
+    EXPECT_EQ(normal.pbr.clearcoatNormalScale, 1.0f);
+    EXPECT_FALSE(normal.pbr.normalTexture.valid());  // the coat's map is not the base's
+}
+}  // namespace
+}  // namespace vkp
