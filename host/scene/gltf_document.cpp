@@ -248,6 +248,30 @@ void checkLights(const char* text, std::size_t n, const std::string& file) {
     }
 }
 
+/// Skins as tinygltf 2.7 needs them: it refuses a skin without "joints" (glTF 1.0 files name
+/// "jointNames" instead) and gives no reason. vkpath draws skinned meshes in their bind pose, but
+/// the file must still be glTF 2.0. Only for documents that mention skins.
+void checkSkins(const char* text, std::size_t n, const std::string& file) {
+    const std::string_view view(text, n);
+    if (view.find("\"skins\"") == std::string_view::npos) return;
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(view);
+    } catch (const std::exception&) {
+        return;
+    }
+    if (!doc.is_object() || !doc.contains("skins") || !doc["skins"].is_array()) return;
+    for (std::size_t i = 0; i < doc["skins"].size(); ++i) {
+        const nlohmann::json& s = doc["skins"][i];
+        const std::string place = "skins/" + std::to_string(i);
+        if (!s.is_object()) fail(file, place, "must be an object");
+        if (!s.contains("joints") || !s["joints"].is_array() || s["joints"].empty()) {
+            fail(file, place + "/joints", std::string("required: the skin's joint nodes") +
+                                              (s.contains("jointNames") ? " (\"jointNames\" is glTF 1.0: this is not a glTF 2.0 file)" : ""));
+        }
+    }
+}
+
 /// tinygltf's error text (possibly several lines) as one clause.
 std::string oneLine(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
@@ -314,6 +338,7 @@ Document readDocument(const std::filesystem::path& path) {
             const auto [at, n] = checkGlb(bytes, doc.file);
             checkNesting(bytes.data() + at, n, doc.file);
             checkLights(bytes.data() + at, n, doc.file);
+            checkSkins(bytes.data() + at, n, doc.file);
             const std::string json = rewriteForTinygltf(std::string_view(bytes.data() + at, n), doc.file, rewritten);
             const std::string glb = json.empty() ? std::string() : withJsonChunk(bytes, at, n, json);
             const std::string& in = json.empty() ? bytes : glb;
@@ -322,6 +347,7 @@ Document readDocument(const std::filesystem::path& path) {
         } else {
             checkNesting(bytes.data(), bytes.size(), doc.file);
             checkLights(bytes.data(), bytes.size(), doc.file);
+            checkSkins(bytes.data(), bytes.size(), doc.file);
             const std::string json = rewriteForTinygltf(bytes, doc.file, rewritten);
             const std::string& in = json.empty() ? bytes : json;
             ok = loader.LoadASCIIFromString(&doc.model, &err, &warn, in.data(), static_cast<unsigned int>(in.size()),

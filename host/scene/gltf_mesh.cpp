@@ -123,12 +123,24 @@ std::string primitivePlace(const Document& doc, std::size_t mesh, std::size_t pr
            std::to_string(primitive);
 }
 
+const char* primitiveModeName(int mode) { return modeName(mode); }
+
+bool pointsOrLines(int mode) {
+    return mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+           mode == TINYGLTF_MODE_LINE_STRIP;
+}
+
 PrimitiveSize primitiveSize(const Document& doc, std::size_t mesh, std::size_t primitive) {
     const tinygltf::Primitive& p = primitiveAt(doc, mesh, primitive);
     const std::string where = primitivePlace(doc, mesh, primitive);
+    if (pointsOrLines(p.mode)) {
+        PrimitiveSize none;
+        none.drawn = false;
+        return none;
+    }
     if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP && p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
         fail(doc.file, where, "mode " + std::to_string(p.mode) + " (" + modeName(p.mode) +
-                                  ") is not supported: vkpath renders triangles (modes 4 TRIANGLES, 5 TRIANGLE_STRIP, 6 TRIANGLE_FAN)");
+                                  ") is not a glTF primitive mode (0 POINTS ... 6 TRIANGLE_FAN)");
     }
     const int position = attribute(p, "POSITION");
     if (position < 0) fail(doc.file, where, "has no POSITION attribute");
@@ -160,6 +172,7 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
     const tinygltf::Primitive& p = primitiveAt(doc, mesh, primitive);
     const std::string where = primitivePlace(doc, mesh, primitive);
     const PrimitiveSize size = primitiveSize(doc, mesh, primitive);
+    if (!size.drawn) return;  // points and lines: appendInstances warned
     const glm::dmat3 linear(world);
     const double det = glm::determinant(linear);
     // A node scaled to zero (a hidden object) has nothing to render; its data is still checked.

@@ -141,11 +141,17 @@ private:
 };
 
 /// Triangles and vertices a primitive yields (after strip / fan conversion), from accessor counts
-/// only. Refuses modes other than triangles, strips and fans, and a missing POSITION.
+/// only. Points and lines (modes 0-3) yield nothing (drawn = false: vkpath renders surfaces);
+/// refuses an unknown mode and a missing POSITION.
 struct PrimitiveSize {
     std::uint64_t triangles = 0;
     std::uint64_t vertices = 0;
+    bool drawn = true;
 };
+/// True for the modes vkpath skips (POINTS, LINES, LINE_LOOP, LINE_STRIP).
+bool pointsOrLines(int mode);
+/// "POINTS", "LINES", ... "TRIANGLE_FAN" ("unknown" for other values).
+const char* primitiveModeName(int mode);
 PrimitiveSize primitiveSize(const Document& doc, std::size_t mesh, std::size_t primitive);
 
 /// Append one instance of a primitive, placed by world (column vectors, p_world = world * p), to

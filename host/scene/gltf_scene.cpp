@@ -217,6 +217,12 @@ std::pair<glm::dvec3, glm::dvec3> appendInstances(const Document& doc, const Ins
         counted[mi.mesh] = 1;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const PrimitiveSize size = primitiveSize(doc, mi.mesh, p);
+            if (!size.drawn) {
+                const int mode = mesh.primitives[p].mode;
+                warnOnce(scene, line(doc.file, primitivePlace(doc, mi.mesh, p),
+                                     "mode " + std::to_string(mode) + " (" + primitiveModeName(mode) +
+                                         "): points and lines are not rendered (vkpath renders surfaces): skipped"));
+            }
             triangles += size.triangles;
             if (!shared[mi.mesh]) worldTriangles += size.triangles;
             vertices += size.vertices;

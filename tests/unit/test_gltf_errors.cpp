@@ -181,8 +181,14 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
         {"overflow_by_node", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {1e39, 1e39, 1e39}; d["nodes"][0]["translation"] = {3e38, 0, 0}; },
          kPos + "element 1 is outside the range of 32-bit floats once placed by its node, relative to the camera (drawn by node 0)"},
         // Meshes, nodes, scenes.
-        {"mode_lines", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["mode"] = 1; },
-         kPrim + "mode 1 (LINES) is not supported"},
+        {"skin_without_joints",
+         [](Json& d, Bytes&) {
+             d["skins"] = Json::parse(R"([{"jointNames": ["a"]}])");
+             d["nodes"][0]["skin"] = 0;
+         },
+         "skins/0/joints: required: the skin's joint nodes (\"jointNames\" is glTF 1.0: this is not a glTF 2.0 file)"},
+        {"mode_unknown", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["mode"] = 9; },
+         kPrim + "mode 9 (unknown) is not a glTF primitive mode"},
         {"not_whole_triangles", [](Json& d, Bytes&) { d["accessors"][2]["count"] = 2; }, kPrim + "2 indices do not make whole triangles"},
         {"no_position", [](Json& d, Bytes&) { d["meshes"][0]["primitives"][0]["attributes"].erase("POSITION"); },
          kPrim + "has no POSITION attribute"},
@@ -425,6 +431,25 @@ TEST(GltfErrors, VertexColoursAreReadWithoutAWarning) {
     ASSERT_EQ(s.vertices.color.size(), 3u);
     EXPECT_EQ(s.vertices.color[1], glm::vec4(1, 0, 0, 1));
     EXPECT_TRUE(s.triangleVertices.at(0).flags & TriangleVertices::kHasColor);
+}
+
+// Points and lines (glTF modes 0-3) are skipped with one warning each, naming the primitive; the
+// triangles of the same mesh are still drawn.
+TEST(GltfErrors, PointsAndLinesAreSkippedWithAWarning) {
+    const Scene s = loadSceneGltf(writeCase({"lines_and_triangle", [](Json& d, Bytes&) {
+        Json lines = d["meshes"][0]["primitives"][0];
+        lines["mode"] = 1;
+        lines.erase("indices");
+        Json points = lines;
+        points["mode"] = 0;
+        d["meshes"][0]["primitives"].push_back(lines);
+        d["meshes"][0]["primitives"].push_back(points);
+    }, ""}));
+    EXPECT_EQ(s.shapes.size(), 1u);  // the triangle
+    ASSERT_EQ(s.warnings.size(), 2u);
+    EXPECT_NE(s.warnings[0].find("mesh 0 (\"tri\") primitive 1: mode 1 (LINES): points and lines are not rendered"),
+              std::string::npos) << s.warnings[0];
+    EXPECT_NE(s.warnings[1].find("primitive 2: mode 0 (POINTS)"), std::string::npos) << s.warnings[1];
 }
 
 // An unlit material renders as an emitter: its alphaMode and the COLOR_0 of its meshes are ignored,
