@@ -16,18 +16,6 @@ namespace {
 /// not bounded by the file's size).
 constexpr std::size_t kMaxAccessorCount = std::size_t(1) << 28;
 
-int componentSize(int type) {
-    switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // INT and DOUBLE are not glTF 2.0 accessor component types
-    }
-}
-
 const char* componentName(int type) {
     switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE: return "byte";
@@ -90,6 +78,19 @@ std::size_t sparseIndex(const std::uint8_t* p, int type, std::size_t i) {
 }
 
 }  // namespace
+
+int componentSize(int type) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;  // INT and DOUBLE are not glTF 2.0 accessor component types
+    }
+}
+
 
 std::string Accessor::place() const { return "accessor " + std::to_string(index_) + " (" + use_ + ")"; }
 

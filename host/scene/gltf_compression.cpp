@@ -73,18 +73,6 @@ const std::uint8_t* bytesOf(const tinygltf::Model& m, std::uint64_t b, std::uint
     return data.data() + offset;
 }
 
-std::size_t componentBytes(int type) {
-    switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
-    }
-}
-
 int typeComponents(int type) {
     switch (type) {
     case TINYGLTF_TYPE_SCALAR: return 1;
@@ -234,7 +222,7 @@ void decodeDracoPrimitive(Document& doc, std::size_t mesh, std::size_t primitive
         fail(doc.file, "accessor " + std::to_string(p.indices) + " (indices of " + where + ")",
              "count " + std::to_string(ia.count) + " but the Draco mesh has " + std::to_string(faces) + " triangles");
     }
-    const std::size_t indexBytes = componentBytes(ia.componentType);
+    const std::size_t indexBytes = std::size_t(componentSize(ia.componentType));
     if (ia.type != TINYGLTF_TYPE_SCALAR || ia.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || indexBytes == 0 ||
         ia.componentType == TINYGLTF_COMPONENT_TYPE_BYTE || ia.componentType == TINYGLTF_COMPONENT_TYPE_SHORT) {
         fail(doc.file, "accessor " + std::to_string(p.indices) + " (indices of " + where + ")",

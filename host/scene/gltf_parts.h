@@ -64,6 +64,9 @@ void decodeMeshopt(Document& doc, const Rewritten& rewritten);
 /// (copies of the primitive's, which then point at them). Refuses a mismatch naming the primitive.
 void decodeDraco(Document& doc, const Rewritten& rewritten);
 
+/// Bytes of one component of glTF componentType type (0 for a type glTF 2.0 accessors do not have).
+int componentSize(int type);
+
 /// Extensions vkpath reads (every other one is refused when required, warned about when used).
 bool extensionImplemented(const std::string& name);
 

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "file_frame.h"
+#include "furnace_sphere.h"
 #include "gpu_env.h"
 #include "half_quads.h"
 #include "render/gpu_scene.h"
@@ -38,8 +39,6 @@ namespace {
 
 // ---- 1. Furnace ---------------------------------------------------------------------------------
 
-constexpr std::uint32_t kSize = 24;
-
 struct LayerCase {
     const char* name;
     glm::vec3 base;
@@ -49,12 +48,7 @@ struct LayerCase {
 };
 
 Scene furnaceScene(const LayerCase& c, std::uint32_t seed) {
-    Scene scene = parseSceneJson(R"({
-      "camera": {"lookfrom": [0, 0, 4], "lookat": [0, 0, 0], "vup": [0, 1, 0], "vfov": 40, "width": 24, "height": 24},
-      "render": {"max_depth": 50, "background": [1, 1, 1]},
-      "materials": {"m": {"type": "lambertian", "albedo": [1, 1, 1]}},
-      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m", "sample": true}]})",
-                                 "layers-furnace.json");
+    Scene scene = furnaceSphereScene("layers-furnace.json");
     Material& m = scene.materials.at(0);
     m.type = MaterialType::Pbr;
     m.albedo = c.base;
@@ -69,68 +63,19 @@ Scene furnaceScene(const LayerCase& c, std::uint32_t seed) {
     return scene;
 }
 
-glm::dvec3 cameraTarget(const gpu::GpuFrame& f, double i, double j) {
-    return glm::dvec3(f.pixel00) + i * glm::dvec3(f.pixelDu) + j * glm::dvec3(f.pixelDv);
-}
-
-/// Cosine between the unit sphere's normal and -d where o + t d first hits it (0: miss).
-double hitCosine(glm::dvec3 o, glm::dvec3 d) {
-    d = glm::normalize(d);
-    const double b = glm::dot(o, d), c = glm::dot(o, o) - 1.0, disc = b * b - c;
-    if (disc <= 0.0) return 0.0;
-    const double t = -b - std::sqrt(disc);
-    return t > 0.0 ? -glm::dot(o + t * d, d) : 0.0;
-}
-
-std::vector<Pixel> spherePixels(const Scene& scene) {
-    gpu::GpuFrame f{};
-    packFileFrameCamera(scene, f);
-    const glm::dvec3 o(f.origin);
-    std::vector<Pixel> out;
-    for (std::uint32_t y = 0; y < kSize; ++y)
-        for (std::uint32_t x = 0; x < kSize; ++x) {
-            bool all = true;
-            for (double sx : {-0.5, 0.5})
-                for (double sy : {-0.5, 0.5}) all = all && hitCosine(o, cameraTarget(f, x + sx, y + sy) - o) > 0.0;
-            if (all) out.push_back({x, y});
-        }
-    return out;
-}
-
-/// Host estimate of the sphere pixels' average (channel ch): per pixel n camera rays with the
-/// kernel's box-filter jitter, one sample of the layered material each (background 1).
+/// Host estimate of the sphere pixels' average (channel ch): one sample of the layered material
+/// (layers.h, coat and base in one frame: a sphere has no normal map) per camera ray.
 Estimate hostFurnace(const Scene& scene, const LayerCase& c, const std::vector<Pixel>& pixels, int ch, int n, std::uint32_t seed) {
     gpu::LayeredBrdf m;
     m.base = gpu::makeGltfBrdf(c.base, c.metallic, c.roughness, 1.0f, glm::vec3(1.0f));
     m.layers = gpu::makeGltfLayers(c.coat, c.coatRoughness, c.sheen, c.sheenRoughness);
     m.frame = gpu::onbFromNormal(glm::vec3(0, 0, 1));
     m.coatFrame = m.frame;
-    gpu::GpuFrame f{};
-    packFileFrameCamera(scene, f);
-    const glm::dvec3 o(f.origin);
-    UniformSource rng(seed);
-    Estimate e;
-    for (const Pixel& p : pixels) {
-        double s = 0.0, s2 = 0.0;
-        for (int i = 0; i < n; ++i) {
-            const glm::vec2 j = rng.next2() - glm::vec2(0.5f);
-            const double mu = hitCosine(o, cameraTarget(f, p.x + j.x, p.y + j.y) - o);
-            const glm::vec3 v(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.0f, float(mu));
-            float pdf = 0.0f;
-            const glm::vec3 l = gpu::sampleLayered(m, v, rng.next3(), pdf);
-            const double w = pdf > 0.0f ? double(gpu::evalLayeredCos(m, v, l)[ch]) / pdf : 0.0;
-            s += w;
-            s2 += w * w;
-        }
-        const double mean = s / n;
-        e.mean += mean;
-        e.var += std::max(0.0, s2 / n - mean * mean) / (n - 1);
-    }
-    const double k = double(pixels.size());
-    e.mean /= k;
-    e.var /= k * k;
-    e.n = n;
-    return e;
+    return hostFurnaceEstimate(scene, pixels, n, seed, [&](glm::vec3 v, UniformSource& rng) {
+        float pdf = 0.0f;
+        const glm::vec3 l = gpu::sampleLayered(m, v, rng.next3(), pdf);
+        return pdf > 0.0f ? double(gpu::evalLayeredCos(m, v, l)[ch]) / pdf : 0.0;
+    });
 }
 
 TEST(GpuLayers, FurnaceMatchesHostAndNeverExceedsOne) {

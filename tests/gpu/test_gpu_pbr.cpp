@@ -21,6 +21,7 @@
 #include "render/gpu_scene.h"
 #include "shared/microfacet.h"
 #include "stat_suite.h"
+#include "furnace_sphere.h"
 #include "test_gpu_analytic_common.h"
 #include "file_frame.h"
 
@@ -40,48 +41,11 @@ void makePbr(Material& m, glm::vec3 base, float metallic, float roughness, float
     m.pbr.specularColor = glm::vec3(1.0f);
 }
 
-constexpr std::uint32_t kFurnaceSize = 24;
-
 Scene furnaceScene(glm::vec3 base, float metallic, float roughness, float specular, std::uint32_t seed) {
-    Scene scene = parseSceneJson(R"({
-      "camera": {"lookfrom": [0, 0, 4], "lookat": [0, 0, 0], "vup": [0, 1, 0], "vfov": 40, "width": 24, "height": 24},
-      "render": {"max_depth": 50, "background": [1, 1, 1]},
-      "materials": {"m": {"type": "lambertian", "albedo": [1, 1, 1]}},
-      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m", "sample": true}]})",
-                                 "pbr-furnace.json");
+    Scene scene = furnaceSphereScene("pbr-furnace.json");
     makePbr(scene.materials.at(0), base, metallic, roughness, specular);
     scene.render.seed = seed;
     return scene;
-}
-
-glm::dvec3 cameraTarget(const gpu::GpuFrame& f, double i, double j) {
-    return glm::dvec3(f.pixel00) + i * glm::dvec3(f.pixelDu) + j * glm::dvec3(f.pixelDv);
-}
-
-/// Cosine between the unit sphere's normal and -d where the ray o + t d first hits it (0: miss).
-double hitCosine(glm::dvec3 o, glm::dvec3 d) {
-    d = glm::normalize(d);
-    const double b = glm::dot(o, d), c = glm::dot(o, o) - 1.0, disc = b * b - c;
-    if (disc <= 0.0) return 0.0;
-    const double t = -b - std::sqrt(disc);
-    if (t <= 0.0) return 0.0;
-    return -glm::dot(o + t * d, d);
-}
-
-/// Pixels whose four corners all see the sphere (the silhouette is convex: the whole pixel does).
-std::vector<Pixel> spherePixels(const Scene& scene) {
-    gpu::GpuFrame f{};
-    packFileFrameCamera(scene, f);
-    const glm::dvec3 o(f.origin);
-    std::vector<Pixel> out;
-    for (std::uint32_t y = 0; y < kFurnaceSize; ++y)
-        for (std::uint32_t x = 0; x < kFurnaceSize; ++x) {
-            bool all = true;
-            for (double sx : {-0.5, 0.5})
-                for (double sy : {-0.5, 0.5}) all = all && hitCosine(o, cameraTarget(f, x + sx, y + sy) - o) > 0.0;
-            if (all) out.push_back({x, y});
-        }
-    return out;
 }
 
 /// Host estimate of the sphere pixels' average (channel c): per pixel n camera rays with the
@@ -90,33 +54,11 @@ Estimate hostFurnace(const Scene& scene, const std::vector<Pixel>& pixels, int c
     const Material& m = scene.materials.at(0);
     const gpu::GltfBrdf b = gpu::makeGltfBrdf(glm::vec3(m.pbr.baseColor), m.pbr.metallic, m.pbr.roughness, m.pbr.specular,
                                               m.pbr.specularColor);
-    gpu::GpuFrame f{};
-    packFileFrameCamera(scene, f);
-    const glm::dvec3 o(f.origin);
-    UniformSource rng(seed);
-    Estimate e;
-    for (const Pixel& p : pixels) {
-        double s = 0.0, s2 = 0.0;
-        for (int i = 0; i < n; ++i) {
-            const glm::vec2 j = rng.next2() - glm::vec2(0.5f);
-            const double mu = hitCosine(o, cameraTarget(f, p.x + j.x, p.y + j.y) - o);
-            const glm::vec3 v(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.0f, float(mu));
-            float pdf = 0.0f;
-            const glm::vec3 l = gpu::sampleGltfBrdf(b, v, rng.next3(), pdf);
-            double w = 0.0;
-            if (l.z > 0.0f && pdf > 0.0f) w = double(gpu::evalGltfBrdf(b, v, l)[c]) * l.z / pdf;
-            s += w;
-            s2 += w * w;
-        }
-        const double mean = s / n;
-        e.mean += mean;
-        e.var += std::max(0.0, s2 / n - mean * mean) / (n - 1);
-    }
-    const double k = double(pixels.size());
-    e.mean /= k;
-    e.var /= k * k;
-    e.n = n;
-    return e;
+    return hostFurnaceEstimate(scene, pixels, n, seed, [&](glm::vec3 v, UniformSource& rng) {
+        float pdf = 0.0f;
+        const glm::vec3 l = gpu::sampleGltfBrdf(b, v, rng.next3(), pdf);
+        return (l.z > 0.0f && pdf > 0.0f) ? double(gpu::evalGltfBrdf(b, v, l)[c]) * l.z / pdf : 0.0;
+    });
 }
 
 struct FurnaceCase {
