@@ -53,6 +53,8 @@ const std::vector<Sample>& samples() {
         {"SimpleSkin.gltf", {"node 0: skin ignored: the mesh is drawn in its bind pose", "animations: ignored"}},
         {"RiggedSimple.gltf", {"node 1: skin ignored: the mesh is drawn in its bind pose", "animations: ignored"}},
         {"RiggedFigure.gltf", {"node 1 (\"Proxy\"): skin ignored: the mesh is drawn in its bind pose", "animations: ignored"}},
+        {"CesiumMan.gltf", {"node 2 (\"Cesium_Man\"): skin ignored: the mesh is drawn in its bind pose", "animations: ignored"}},
+        {"Monster.gltf", {"node 1: skin ignored: the mesh is drawn in its bind pose", "animations: ignored"}},
     };
     return list;
 }
