@@ -7,7 +7,8 @@
 # DIR/vertex-colors.gltf, vertex-colors.bin and cycles-vertex-colors.exr (tools/blender/vertex_colors.py,
 # 32 x 32, 1024 spp), DIR/textured.gltf, textured.bin, checker.png and cycles-textured.exr
 # (tools/blender/textured.py) and DIR/clearcoat.gltf, clearcoat.bin and cycles-clearcoat.exr
-# (tools/blender/clearcoat.py), both 32 x 32 at 1024 spp. The committed copy is scenes/blender-reference (tools/blender-reference.sh
+# (tools/blender/clearcoat.py), both 32 x 32 at 1024 spp, and DIR/spots.gltf, spots.bin and
+# cycles-spots.exr (tools/blender/spots.py, 96 x 96, 1024 spp). The committed copy is scenes/blender-reference (tools/blender-reference.sh
 # scenes/blender-reference); the `reference` test renders a fresh one.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -30,13 +31,14 @@ if ! blender -b --factory-startup --python-exit-code 1 --python "$root/tools/ble
   tail -5 "$log" >&2
   exit 1
 fi
-for part in textured clearcoat; do
-  if ! blender -b --factory-startup --python-exit-code 1 --python "$root/tools/blender/$part.py" -- \
-       "$dir/$part.gltf" "$dir/cycles-$part.exr" 32 1024 >"$log" 2>&1; then
+for part in textured:32 clearcoat:32 spots:96; do
+  name=${part%%:*}
+  if ! blender -b --factory-startup --python-exit-code 1 --python "$root/tools/blender/$name.py" -- \
+       "$dir/$name.gltf" "$dir/cycles-$name.exr" "${part##*:}" 1024 >"$log" 2>&1; then
     echo "blender-reference: Blender failed; its log: $log" >&2
     tail -5 "$log" >&2
     exit 1
   fi
 done
 rm -f "$log"
-echo "blender-reference: wrote $dir/lamps.gltf, lamps.bin, cycles.exr, vertex-colors.gltf, vertex-colors.bin, cycles-vertex-colors.exr, textured.gltf, textured.bin, checker.png, cycles-textured.exr, clearcoat.gltf, clearcoat.bin, cycles-clearcoat.exr (Blender $(blender --version 2>/dev/null | head -1 | cut -d' ' -f2))"
+echo "blender-reference: wrote $dir/lamps.gltf, lamps.bin, cycles.exr, vertex-colors.gltf, vertex-colors.bin, cycles-vertex-colors.exr, textured.gltf, textured.bin, checker.png, cycles-textured.exr, clearcoat.gltf, clearcoat.bin, cycles-clearcoat.exr, spots.gltf, spots.bin, cycles-spots.exr (Blender $(blender --version 2>/dev/null | head -1 | cut -d' ' -f2))"
