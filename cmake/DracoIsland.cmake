@@ -18,10 +18,11 @@ function(vkpath_draco_island name)
   add_custom_command(
     OUTPUT "${out}"
     COMMAND ${CMAKE_COMMAND} "-DLINKER=${CMAKE_LINKER}" "-DNM=${CMAKE_NM}" "-DOBJCOPY=${CMAKE_OBJCOPY}"
-            "-DOBJECTS=$<TARGET_OBJECTS:${name}_objects>" "-DARCHIVE=$<TARGET_FILE:draco::draco_static>"
+            "-DOBJECTS=$<JOIN:$<TARGET_OBJECTS:${name}_objects>,|>" "-DARCHIVE=$<TARGET_FILE:draco::draco_static>"
             "-DKEEP=${ARG_LOCALIZE_EXCEPT}" "-DOUT=${out}" -P "${PROJECT_SOURCE_DIR}/cmake/draco_island.cmake"
-    DEPENDS ${name}_objects $<TARGET_OBJECTS:${name}_objects> "${PROJECT_SOURCE_DIR}/cmake/draco_island.cmake"
-    VERBATIM COMMAND_EXPAND_LISTS)
+    DEPENDS ${name}_objects $<TARGET_OBJECTS:${name}_objects> "$<TARGET_FILE:draco::draco_static>"
+            "${PROJECT_SOURCE_DIR}/cmake/draco_island.cmake"
+    VERBATIM)
   set_source_files_properties("${out}" PROPERTIES EXTERNAL_OBJECT TRUE GENERATED TRUE)
   add_library(${name} STATIC "${out}")
   set_target_properties(${name} PROPERTIES LINKER_LANGUAGE CXX)

@@ -1,6 +1,6 @@
 # Build step of vkpath_draco_island (DracoIsland.cmake): ld -r OBJECTS + ARCHIVE -> OUT, refuse
 # tinygltf or stb code in the result, optionally localize every strong global but KEEP*.
-string(REPLACE " " ";" objects "${OBJECTS}")
+string(REPLACE "|" ";" objects "${OBJECTS}")  # the object files, joined with | (paths may hold spaces)
 set(partial "${OUT}.partial.o")
 execute_process(COMMAND "${LINKER}" -r -o "${partial}" ${objects} "${ARCHIVE}" RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

@@ -5,10 +5,13 @@
 //     and the three filters);
 //   KHR_draco_mesh_compression (registry, Khronos/KHR_draco_mesh_compression), decoded with
 //     Debian's libdraco. Debian's tinygltf is built without Draco, so vkpath does it here.
-// Every size a stream claims is checked against the file before anything is allocated for it.
+// Every size a stream claims is checked against the file before anything is allocated for it
+// (meshopt); Draco's decoder allocates what its stream describes, and the total decoded is then
+// bounded by the distinct streams' size.
 #include <algorithm>
 #include <cstring>
 #include <optional>
+#include <set>
 
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
@@ -125,6 +128,7 @@ MeshoptView readMeshoptView(const tinygltf::Model& m, std::size_t v, const Value
     } else if (s.filter != "NONE" && s.filter != "EXPONENTIAL") {
         fail(file, place + "/filter", "\"" + s.filter + "\" is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
     }
+    (void)bytesOf(m, s.source, s.offset, s.length, file, place);  // the compressed bytes exist in the file
     const tinygltf::BufferView& bv = m.bufferViews[v];
     if (s.count > (std::uint64_t(1) << 32) || s.count * s.stride > bv.byteLength) {
         fail(file, place, std::to_string(s.count) + " elements of " + std::to_string(s.stride) +
@@ -142,7 +146,10 @@ void decodeMeshoptView(tinygltf::Model& m, const MeshoptView& s, const std::stri
     const std::uint8_t* src = bytesOf(m, s.source, s.offset, s.length, file, place);
     const tinygltf::BufferView& bv = m.bufferViews[s.view];
     const std::size_t n = std::size_t(s.count * s.stride);
-    // Decoded into scratch first: the source may lie in the same buffer as the destination.
+    std::uint8_t* dst = const_cast<std::uint8_t*>(bytesOf(m, std::uint64_t(bv.buffer), bv.byteOffset, n, file,
+                                                          "bufferView " + std::to_string(s.view)));
+    // Decoded into scratch first (its size bounded by the destination's, checked above): the
+    // source may lie in the same buffer as the destination.
     std::vector<unsigned char> out(std::max<std::size_t>(n, 1));
     int rc = 0;
     if (s.mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(out.data(), s.count, s.stride, src, s.length);
@@ -152,8 +159,6 @@ void decodeMeshoptView(tinygltf::Model& m, const MeshoptView& s, const std::stri
     if (s.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), s.count, s.stride);
     else if (s.filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), s.count, s.stride);
     else if (s.filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), s.count, s.stride);
-    std::uint8_t* dst = const_cast<std::uint8_t*>(bytesOf(m, std::uint64_t(bv.buffer), bv.byteOffset, n, file,
-                                                          "bufferView " + std::to_string(s.view)));
     std::memcpy(dst, out.data(), n);
 }
 
@@ -189,7 +194,18 @@ int appendDecoded(tinygltf::Model& m, int like, std::vector<unsigned char> bytes
     return int(m.accessors.size()) - 1;
 }
 
-void decodeDracoPrimitive(Document& doc, std::size_t mesh, std::size_t primitive, const Value& ext) {
+/// What the Draco primitives of one file have decoded: the bytes of the distinct streams read and
+/// the bytes their decoding produced, which may not exceed kMaxDracoRatio times the former.
+struct DracoBudget {
+    std::set<std::uint64_t> streams;
+    std::uint64_t streamBytes = 0, decodedBytes = 0;
+};
+/// A Draco stream decodes to at most this many times its size (quantised attributes and
+/// connectivity compress to about 1:10-1:50 in practice); more is a broken or hostile file, or one
+/// primitive's stream reused by thousands of primitives.
+constexpr std::uint64_t kMaxDracoRatio = 1024;
+
+void decodeDracoPrimitive(Document& doc, std::size_t mesh, std::size_t primitive, const Value& ext, DracoBudget& budget) {
     tinygltf::Model& m = doc.model;
     const std::string where = primitivePlace(doc, mesh, primitive);
     const std::string place = where + "/extensions/KHR_draco_mesh_compression";
@@ -216,6 +232,12 @@ void decodeDracoPrimitive(Document& doc, std::size_t mesh, std::size_t primitive
     const std::unique_ptr<draco_island::Mesh> dm = draco_island::decode(bytes, bv.byteLength, why);
     if (!dm) fail(doc.file, place, "the Draco stream does not decode: " + why);
     const std::size_t points = dm->points(), faces = dm->faces();
+    if (budget.streams.insert(v).second) budget.streamBytes += bv.byteLength;
+    budget.decodedBytes += std::uint64_t(faces) * 12 + std::uint64_t(points) * 4 * (1 + attributes->Keys().size()) * 4;
+    if (budget.decodedBytes > kMaxDracoRatio * budget.streamBytes + (std::uint64_t(1) << 20)) {
+        fail(doc.file, place, "the Draco streams decode to more than " + std::to_string(kMaxDracoRatio) +
+                                  " times their size: not a mesh vkpath will hold");
+    }
 
     const tinygltf::Accessor& ia = accessorOf(p.indices, "indices");
     if (ia.count != faces * 3) {
@@ -340,8 +362,18 @@ void decodeMeshopt(Document& doc, const Rewritten& rewritten) {
         const auto it = m.bufferViews[v].extensions.find("EXT_meshopt_compression");
         if (it != m.bufferViews[v].extensions.end()) views.push_back(readMeshoptView(m, v, it->second, doc.file));
     }
+    // Everything decoded together stays within kMaxMeshoptRatio times the data the file holds
+    // (views may share compressed bytes, so each view's own bound is not enough).
+    std::uint64_t fileBytes = 0, decoded = 0;
+    for (const tinygltf::Buffer& b : m.buffers) fileBytes += b.data.size();
+    for (const MeshoptView& s : views) decoded += s.count * s.stride;
+    if (decoded > kMaxMeshoptRatio * fileBytes + 4096) {
+        fail(doc.file, "EXT_meshopt_compression", "the bufferViews decode to " + std::to_string(decoded) + " bytes, more than " +
+                                                      std::to_string(kMaxMeshoptRatio) + " times the " + std::to_string(fileBytes) +
+                                                      " bytes of data in the file: not meshopt streams");
+    }
     // Fallback buffers hold no data in the file: give each the bytes its views cover (bounded by
-    // what the compressed streams can decode to), then decode into them.
+    // what its compressed views decode to, checked above), then decode into them.
     for (const auto& [b, length] : rewritten.fallbackLength) {
         std::uint64_t end = 0, budget = 4096;
         for (std::size_t v = 0; v < m.bufferViews.size(); ++v) {
@@ -350,7 +382,7 @@ void decodeMeshopt(Document& doc, const Rewritten& rewritten) {
             end = std::max<std::uint64_t>(end, std::uint64_t(bv.byteOffset) + bv.byteLength);
         }
         for (const MeshoptView& s : views) {
-            if (std::size_t(m.bufferViews[s.view].buffer) == b) budget += kMaxMeshoptRatio * s.length;
+            if (std::size_t(m.bufferViews[s.view].buffer) == b) budget += s.count * s.stride + 16;  // + alignment
         }
         const std::string place = "buffer " + std::to_string(b);
         if (end > length) {
@@ -367,11 +399,12 @@ void decodeMeshopt(Document& doc, const Rewritten& rewritten) {
 
 void decodeDraco(Document& doc, const Rewritten& rewritten) {
     for (std::size_t a : rewritten.borrowedIndexViews) doc.model.accessors.at(a).bufferView = -1;
+    DracoBudget budget;
     for (std::size_t mesh = 0; mesh < doc.model.meshes.size(); ++mesh) {
         for (std::size_t p = 0; p < doc.model.meshes[mesh].primitives.size(); ++p) {
             const auto& ext = doc.model.meshes[mesh].primitives[p].extensions;
             const auto it = ext.find("KHR_draco_mesh_compression");
-            if (it != ext.end()) decodeDracoPrimitive(doc, mesh, p, tinygltf::Value(it->second));
+            if (it != ext.end()) decodeDracoPrimitive(doc, mesh, p, tinygltf::Value(it->second), budget);
         }
     }
 }

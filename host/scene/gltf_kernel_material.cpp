@@ -33,7 +33,9 @@ const char* texCoord1Slot(const Material& m) {
         {&p.baseColorTexture, "baseColorTexture"}, {&p.metallicRoughnessTexture, "metallicRoughnessTexture"},
         {&p.normalTexture, "normalTexture"},       {&p.emissiveTexture, "emissiveTexture"},
         {&p.specularTexture, "specularTexture"},   {&p.specularColorTexture, "specularColorTexture"},
-        {&p.transmissionTexture, "transmissionTexture"}};
+        {&p.transmissionTexture, "transmissionTexture"}, {&p.clearcoatTexture, "clearcoatTexture"},
+        {&p.clearcoatRoughnessTexture, "clearcoatRoughnessTexture"}, {&p.clearcoatNormalTexture, "clearcoatNormalTexture"},
+        {&p.sheenColorTexture, "sheenColorTexture"}, {&p.sheenRoughnessTexture, "sheenRoughnessTexture"}};
     for (const auto& [ref, name] : slots)
         if (ref->valid() && ref->texCoord == 1) return name;
     return nullptr;

@@ -281,8 +281,10 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
     } else if (!mv.color.empty()) {
         mv.color.resize(base + nv, glm::vec4(1.0f));
     }
-    const bool normalMapped = scene.materials.at(material).type == MaterialType::Pbr &&
-                              scene.materials[material].pbr.normalTexture.valid();
+    // A normal map on the base or on the clear coat needs tangents (generated below without TANGENT).
+    const Material& mat = scene.materials.at(material);
+    const bool normalMapped = mat.type == MaterialType::Pbr &&
+                              (mat.pbr.normalTexture.valid() || ((mat.pbr.layers() & gpu::LAYER_COAT) && mat.pbr.clearcoatNormalTexture.valid()));
     {
         const std::vector<float> tangents = readAttribute(doc, p, "TANGENT", where, 4, {kFloat, kByte, kShort}, nv);
         if (!tangents.empty()) {

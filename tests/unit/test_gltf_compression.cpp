@@ -393,6 +393,22 @@ TEST_F(GltfCompression, BrokenStreamsAreRefusedNamingThePlace) {
     const std::string bomb = errorOf(write("meshopt-bomb.gltf", d.dump()));
     EXPECT_NE(bomb.find("cannot come from"), std::string::npos) << bomb;
 
+    // Many views citing the same compressed bytes: each within its own bound, together far beyond
+    // what the file's data can decode to (a decompression bomb by repetition).
+    d = Json::parse(meshoptFile(mesh_, {}));
+    {
+        const Json view = d["bufferViews"][0];
+        const std::uint64_t each = view["byteLength"].get<std::uint64_t>();
+        for (int i = 0; i < 2000; ++i) {
+            Json v = view;
+            v["byteOffset"] = each * std::uint64_t(i + 1);
+            d["bufferViews"].push_back(v);
+        }
+        d["buffers"][1]["byteLength"] = each * 2001;
+    }
+    const std::string many = errorOf(write("meshopt-many.gltf", d.dump()));
+    EXPECT_NE(many.find("EXT_meshopt_compression: the bufferViews decode to"), std::string::npos) << many;
+
     // An unknown mode.
     d = Json::parse(meshoptFile(mesh_, {}));
     d["bufferViews"][3]["extensions"]["EXT_meshopt_compression"]["mode"] = "STRIPS";
