@@ -31,11 +31,6 @@ constexpr std::uint64_t kMaxMeshoptRatio = 256;
 /// Placeholder for a fallback buffer (no uri) while tinygltf reads the file: one zero byte.
 constexpr const char* kPlaceholderUri = "data:application/octet-stream;base64,AA==";
 
-const Value* member(const Value& object, const char* key) {
-    if (!object.IsObject() || !object.Has(key)) return nullptr;
-    return &object.Get(key);
-}
-
 /// A non-negative integer member (def when absent and optional).
 std::uint64_t count(const Value& object, const char* key, const std::string& file, const std::string& place,
                     std::optional<std::uint64_t> def = std::nullopt) {

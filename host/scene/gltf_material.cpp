@@ -25,12 +25,6 @@ std::string rangeMessage(double x, double lo, double hi) {
     return "must be in [" + fmt(lo) + ", " + fmt(hi) + "] (got " + fmt(x) + ")";
 }
 
-/// Member key of an extension object, or null.
-const Value* member(const Value& object, const char* key) {
-    if (!object.IsObject() || !object.Has(key)) return nullptr;
-    return &object.Get(key);
-}
-
 /// The extension object named name in extensions, or null; refuses a non-object.
 const Value* extension(const tinygltf::ExtensionMap& extensions, const char* name, const std::string& file,
                        const std::string& place) {
@@ -99,6 +93,11 @@ TextureWrap wrap(int mode, const std::string& file, const std::string& place) {
 constexpr double kInf = HUGE_VAL;
 
 }  // namespace
+
+const Value* member(const Value& object, const char* key) {
+    if (!object.IsObject() || !object.Has(key)) return nullptr;
+    return &object.Get(key);
+}
 
 MaterialMapper::MaterialMapper(const Document& doc, Scene& scene, std::optional<std::uint32_t> override)
     : doc_(doc), scene_(scene), override_(override), materialIndex_(doc.model.materials.size() + 1, -1),

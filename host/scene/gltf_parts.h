@@ -64,6 +64,9 @@ void decodeMeshopt(Document& doc, const Rewritten& rewritten);
 /// (copies of the primitive's, which then point at them). Refuses a mismatch naming the primitive.
 void decodeDraco(Document& doc, const Rewritten& rewritten);
 
+/// Member key of a tinygltf object value (an extension), or null.
+const tinygltf::Value* member(const tinygltf::Value& object, const char* key);
+
 /// Bytes of one component of glTF componentType type (0 for a type glTF 2.0 accessors do not have).
 int componentSize(int type);
 

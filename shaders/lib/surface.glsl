@@ -198,17 +198,19 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
             if ((flags & ATTR_HAS_TANGENT) != 0u) {
                 // Without NORMAL a map perturbs the flat normal (glTF: flat shading), front = winding.
                 vec3 nFlat = hasN ? n : normalize(cross(primEdge1(p), primEdge2(p)));
+                vec4 cc;  // the base's map in c, the coat's in cc; one tangent frame for both
+                bool mapBase = sampleSlot(rec, TEX_SLOT_NORMAL, uv, uv1, c);
+                bool mapCoat = HAS_COAT && layered && sampleSlot(rec, TEX_SLOT_CLEARCOAT_NORMAL, uv, uv1, cc);
                 vec3 tt, bt;
-                if (sampleSlot(rec, TEX_SLOT_NORMAL, uv, uv1, c) && tangentFrame(base, ab, instanced, ins, nFlat, tt, bt)) {
-                    float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL)).z);
-                    n = normalMapped(nFlat, tt, bt, c, scale);
-                    hasN = true;
-                }
-                if (HAS_COAT && layered && sampleSlot(rec, TEX_SLOT_CLEARCOAT_NORMAL, uv, uv1, c) &&
-                    tangentFrame(base, ab, instanced, ins, nFlat, tt, bt)) {
-                    float scale = uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_LAYER_TEXEL)).x);
-                    nc = normalMapped(nFlat, tt, bt, c, scale);
-                    hasNc = true;
+                if ((mapBase || mapCoat) && tangentFrame(base, ab, instanced, ins, nFlat, tt, bt)) {
+                    if (mapBase) {
+                        n = normalMapped(nFlat, tt, bt, c, uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_ALPHA_TEXEL)).z));
+                        hasN = true;
+                    }
+                    if (mapCoat) {
+                        nc = normalMapped(nFlat, tt, bt, cc, uintBitsToFloat(texelFetch(uTexInfo, int(rec + MAT_TEX_LAYER_TEXEL)).x));
+                        hasNc = true;
+                    }
                 }
             }
         }

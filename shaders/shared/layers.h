@@ -207,9 +207,8 @@ VKP_FN vec3 layerProbabilities(LayeredBrdf m, vec3 v) {
     return p / (p.x + p.y + p.z);
 }
 
-/// Density (sr^-1) with which sampleLayered(m, v, .) returns the world-space direction l.
-VKP_FN float pdfLayered(LayeredBrdf m, vec3 v, vec3 l) {
-    vec3 p = layerProbabilities(m, v);
+/// pdfLayered with the strategies' probabilities p = layerProbabilities(m, v) already known.
+VKP_FN float pdfLayeredGiven(LayeredBrdf m, vec3 v, vec3 l, vec3 p) {
     vec3 vb = toLocal(m.frame, v);
     vec3 lb = toLocal(m.frame, l);
     float pdf = p.z * pdfGltfBrdf(m.base, vb, lb);
@@ -217,6 +216,9 @@ VKP_FN float pdfLayered(LayeredBrdf m, vec3 v, vec3 l) {
     if (p.x > 0.0f) pdf += p.x * pdfGgxVndf(toLocal(m.coatFrame, v), toLocal(m.coatFrame, l), m.layers.coatAlpha);
     return pdf;
 }
+
+/// Density (sr^-1) with which sampleLayered(m, v, .) returns the world-space direction l.
+VKP_FN float pdfLayered(LayeredBrdf m, vec3 v, vec3 l) { return pdfLayeredGiven(m, v, l, layerProbabilities(m, v)); }
 
 /// One world-space direction from the layered material seen from v, u in [0,1)^3: u.x picks the
 /// strategy (coat, sheen, base, in that order of the probabilities) and is stretched back to
@@ -235,7 +237,7 @@ VKP_FN vec3 sampleLayered(LayeredBrdf m, vec3 v, vec3 u, OUT(float) pdf) {
         float unused;
         l = toWorld(m.frame, sampleGltfBrdf(m.base, toLocal(m.frame, v), vec3(ub, u.y, u.z), unused));
     }
-    pdf = pdfLayered(m, v, l);
+    pdf = pdfLayeredGiven(m, v, l, p);  // the probabilities once per sample
     return l;
 }
 

@@ -189,23 +189,38 @@ void expectBlocksAgree(const PixelStats& st, const Image& cycles, const char* wh
     std::printf("%s: %u blocks of 4 x 4: largest |vkpath / Cycles - 1| = %.4f\n", what, (cycles.width / 4) * (cycles.height / 4), worst);
 }
 
+/// A file Blender exported (dir/gltf) and Cycles' image of it (dir/exr), the scene's image sized
+/// like Cycles'.
+struct BlenderPair {
+    Image cycles;
+    Scene scene;
+};
+BlenderPair loadPair(const char* gltf, const char* exr) {
+    const std::filesystem::path dir = lampsDir();
+    BlenderPair p{readImage(dir / exr), loadSceneGltf(dir / gltf)};
+    p.scene.camera.width = p.cycles.width;
+    p.scene.camera.height = p.cycles.height;
+    return p;
+}
+
+/// vkpath's render of the pair's scene (mis, 256 spp) against Cycles' image, block by block.
+void expectRenderAgrees(VulkanDevice& dev, const BlenderPair& p, const char* what) {
+    const PixelStats st(renderSums(dev, p.scene, Sampler::Mis, 256, what));
+    ASSERT_TRUE(litAndNotConstant(p.cycles, "Cycles"));
+    expectBlocksAgree(st, p.cycles, what);
+}
+
 // COLOR_0 as Blender writes it: tools/blender/vertex_colors.py, a plane whose float colour attribute
 // (linear in x and y) is its base colour, in a white world; Cycles renders a Diffuse BSDF of that
 // colour, so each pixel is the interpolated colour. vkpath (background 1, specular off) must agree
 // within 3 % in every 4 x 4 block of the 32 x 32 image.
 TEST(GpuBlenderLamps, VertexColoursAgreeWithCycles) {
     VKP_REQUIRE_DEVICE(dev);
-    const std::filesystem::path dir = lampsDir();
-    const Image cycles = readImage(dir / "cycles-vertex-colors.exr");
-    Scene scene = loadSceneGltf(dir / "vertex-colors.gltf");
-    ASSERT_FALSE(scene.vertices.color.empty());
-    for (Material& m : scene.materials) m.pbr.specular = 0.0f;
-    scene.render.background = glm::vec3(1.0f);
-    scene.camera.width = cycles.width;
-    scene.camera.height = cycles.height;
-    const PixelStats st(renderSums(dev, scene, Sampler::Mis, 256, "blender vertex colours"));
-    ASSERT_TRUE(litAndNotConstant(cycles, "Cycles"));
-    expectBlocksAgree(st, cycles, "vertex colours");
+    BlenderPair p = loadPair("vertex-colors.gltf", "cycles-vertex-colors.exr");
+    ASSERT_FALSE(p.scene.vertices.color.empty());
+    for (Material& m : p.scene.materials) m.pbr.specular = 0.0f;
+    p.scene.render.background = glm::vec3(1.0f);
+    expectRenderAgrees(dev, p, "vertex colours");
 }
 
 // A textured object as Blender writes it: tools/blender/textured.py, a plane whose base colour is a
@@ -214,18 +229,12 @@ TEST(GpuBlenderLamps, VertexColoursAgreeWithCycles) {
 // so each pixel is the texture's (sRGB-decoded, bilinear) colour. Within 3 % in every 4 x 4 block.
 TEST(GpuBlenderLamps, TexturedPlaneAgreesWithCycles) {
     VKP_REQUIRE_DEVICE(dev);
-    const std::filesystem::path dir = lampsDir();
-    const Image cycles = readImage(dir / "cycles-textured.exr");
-    Scene scene = loadSceneGltf(dir / "textured.gltf");
-    ASSERT_EQ(scene.textures.size(), 1u);
-    EXPECT_TRUE(scene.textures[0].srgb);
-    for (Material& m : scene.materials) m.pbr.specular = 0.0f;  // exported as specularColorFactor 0 already
-    scene.render.background = glm::vec3(1.0f);
-    scene.camera.width = cycles.width;
-    scene.camera.height = cycles.height;
-    const PixelStats st(renderSums(dev, scene, Sampler::Mis, 256, "blender textured plane"));
-    ASSERT_TRUE(litAndNotConstant(cycles, "Cycles"));
-    expectBlocksAgree(st, cycles, "textured plane");
+    BlenderPair p = loadPair("textured.gltf", "cycles-textured.exr");
+    ASSERT_EQ(p.scene.textures.size(), 1u);
+    EXPECT_TRUE(p.scene.textures[0].srgb);
+    for (Material& m : p.scene.materials) m.pbr.specular = 0.0f;  // exported as specularColorFactor 0 already
+    p.scene.render.background = glm::vec3(1.0f);
+    expectRenderAgrees(dev, p, "textured plane");
 }
 
 // KHR_materials_clearcoat as Blender writes it: tools/blender/clearcoat.py, a plane with a clear
@@ -237,18 +246,12 @@ TEST(GpuBlenderLamps, TexturedPlaneAgreesWithCycles) {
 // Cycles 3.4 counterpart; tests/stats/test_layers.cpp and tests/gpu/test_gpu_layers.cpp test it.)
 TEST(GpuBlenderLamps, ClearcoatAgreesWithCycles) {
     VKP_REQUIRE_DEVICE(dev);
-    const std::filesystem::path dir = lampsDir();
-    const Image cycles = readImage(dir / "cycles-clearcoat.exr");
-    Scene scene = loadSceneGltf(dir / "clearcoat.gltf");
-    ASSERT_EQ(scene.punctualLights.size(), 1u);
-    ASSERT_FALSE(scene.materials.empty());
-    EXPECT_EQ(scene.materials[0].pbr.clearcoat, 1.0f);
-    EXPECT_NEAR(scene.materials[0].pbr.clearcoatRoughness, 0.3f, 1e-6f);
-    scene.camera.width = cycles.width;
-    scene.camera.height = cycles.height;
-    const PixelStats st(renderSums(dev, scene, Sampler::Mis, 256, "blender clear coat"));
-    ASSERT_TRUE(litAndNotConstant(cycles, "Cycles"));
-    expectBlocksAgree(st, cycles, "clear coat");
+    const BlenderPair p = loadPair("clearcoat.gltf", "cycles-clearcoat.exr");
+    ASSERT_EQ(p.scene.punctualLights.size(), 1u);
+    ASSERT_FALSE(p.scene.materials.empty());
+    EXPECT_EQ(p.scene.materials[0].pbr.clearcoat, 1.0f);
+    EXPECT_NEAR(p.scene.materials[0].pbr.clearcoatRoughness, 0.3f, 1e-6f);
+    expectRenderAgrees(dev, p, "clear coat");
 }
 
 }  // namespace
