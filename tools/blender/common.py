@@ -47,3 +47,29 @@ def render_cycles(scene, spp, out_exr, max_bounces=None):
     scene.render.image_settings.color_depth = "32"
     scene.render.filepath = out_exr
     bpy.ops.render.render(write_still=True)
+
+
+def diffuse_floor(size, albedo):
+    """A size x size floor at z = 0 whose Principled material (base albedo, roughness 1, specular 0,
+    not metallic) the exporter writes; returns that material."""
+    bpy.ops.mesh.primitive_plane_add(size=size, location=(0.0, 0.0, 0.0))
+    floor = bpy.context.active_object
+    mat = bpy.data.materials.new("floor")
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (albedo, albedo, albedo, 1.0)
+    bsdf.inputs["Roughness"].default_value = 1.0
+    bsdf.inputs["Specular"].default_value = 0.0
+    bsdf.inputs["Metallic"].default_value = 0.0
+    floor.data.materials.append(mat)
+    return mat
+
+
+def render_as_diffuse(mat, albedo):
+    """After the export: Cycles renders mat as a pure Diffuse BSDF of that albedo (the Lambertian
+    BRDF vkpath renders with specular 0)."""
+    nodes = mat.node_tree.nodes
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (albedo, albedo, albedo, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])

@@ -13,7 +13,7 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import camera_down, image_size, render_cycles, world_color  # noqa: E402
+from common import camera_down, diffuse_floor, image_size, render_as_diffuse, render_cycles, world_color  # noqa: E402
 
 out_gltf, out_exr, size, spp = sys.argv[sys.argv.index("--") + 1:][:4]
 size, spp = int(size), int(spp)
@@ -21,16 +21,7 @@ size, spp = int(size), int(spp)
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
 
-bpy.ops.mesh.primitive_plane_add(size=20.0, location=(0.0, 0.0, 0.0))
-floor = bpy.context.active_object
-mat = bpy.data.materials.new("floor")
-mat.use_nodes = True
-bsdf = mat.node_tree.nodes["Principled BSDF"]
-bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-bsdf.inputs["Roughness"].default_value = 1.0
-bsdf.inputs["Specular"].default_value = 0.0
-bsdf.inputs["Metallic"].default_value = 0.0
-floor.data.materials.append(mat)
+mat = diffuse_floor(20.0, 0.8)
 
 
 def lamp(name, kind, energy, location, rotation=(0.0, 0.0, 0.0), **props):
@@ -57,10 +48,6 @@ image_size(scene, size)  # before the export: the camera's aspectRatio
 bpy.ops.export_scene.gltf(filepath=out_gltf, export_format="GLTF_SEPARATE", export_lights=True, export_cameras=True)
 
 # Cycles renders the floor as a pure Diffuse BSDF (what vkpath renders with specular 0).
-nodes = mat.node_tree.nodes
-diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-diffuse.inputs["Roughness"].default_value = 0.0
-mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+render_as_diffuse(mat, 0.8)
 
 render_cycles(scene, spp, out_exr)

@@ -12,22 +12,14 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import camera_down, image_size, render_cycles, world_color  # noqa: E402
+from common import camera_down, diffuse_floor, image_size, render_as_diffuse, render_cycles, world_color  # noqa: E402
 
 out_gltf, out_exr, size, spp = sys.argv[sys.argv.index("--") + 1:][:4]
 size, spp = int(size), int(spp)
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
-bpy.ops.mesh.primitive_plane_add(size=24.0, location=(0.0, 0.0, 0.0))
-floor = bpy.context.active_object
-mat = bpy.data.materials.new("floor")
-mat.use_nodes = True
-bsdf = mat.node_tree.nodes["Principled BSDF"]
-bsdf.inputs["Base Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-bsdf.inputs["Roughness"].default_value = 1.0
-bsdf.inputs["Specular"].default_value = 0.0
-floor.data.materials.append(mat)
+mat = diffuse_floor(24.0, 0.8)
 
 for i, (size_degrees, blend) in enumerate(((30.0, 0.0), (60.0, 0.15), (100.0, 0.5))):
     data = bpy.data.lights.new("spot%d" % i, "SPOT")
@@ -43,8 +35,5 @@ camera_down(scene, 14.0, 70.0)
 world_color(scene, (0.0, 0.0, 0.0))
 image_size(scene, size)  # before the export: the camera's aspectRatio
 bpy.ops.export_scene.gltf(filepath=out_gltf, export_format="GLTF_SEPARATE", export_lights=True, export_cameras=True)
-nodes = mat.node_tree.nodes
-diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
+render_as_diffuse(mat, 0.8)
 render_cycles(scene, spp, out_exr, max_bounces=1)
