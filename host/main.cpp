@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
             case Command::Render: return runRender(args, start);
             case Command::Info: return runInfo(args);
             case Command::Devices: return runDevices(args);
+            case Command::Merge: return runMerge(args);
         }
     } catch (const InputError& e) {
         return fail(kExitBadInput, e.what());

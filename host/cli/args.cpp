@@ -55,6 +55,8 @@ usage:
   vkpath info SCENE                    primitives, lights, BVH statistics, shader variant, and whether
                                        the render fits the device (takes --width, --height, --device)
   vkpath devices [--validate]          list Vulkan devices and why any is unusable
+  vkpath merge PART... -o OUT          add up the partial files of sample ranges of one render (--partial)
+                                       into its image; also takes --partial FILE, --exposure, --quiet
   vkpath --help | --version
 
 render options:
@@ -99,6 +101,15 @@ render options:
                           at every dump (or, without --dump-every, at 1,2,4,8,... spp) and at the end
   --stats-json FILE       the run's numbers (spp, rays, timings, rates, device) as JSON
   --quiet                 no progress output
+  --checkpoint FILE       keep the render's state in FILE (an EXR of its sums; atomic): every
+                          --checkpoint-every SECONDS (default 60), at SIGINT/SIGTERM and at the end
+  --resume FILE           continue the checkpoint FILE of the same render (same scene and options; the
+                          first difference is named); the result equals an uninterrupted render bit for bit
+  --sample-range A:B      render samples A to B-1 of every pixel (B replaces --spp; not with --adaptive)
+  --partial FILE.exr      write the raw sums (an EXR with the key and the range) for 'vkpath merge'
+
+signals: SIGINT or SIGTERM finishes the batch in flight, writes every output (and --checkpoint,
+--partial) with the samples reached, and exits 130 or 143; a second one exits at once, writing nothing
 
 exit codes: 0 success, 1 bad input or usage, 2 no usable Vulkan device, 3 Vulkan failure
 )";
@@ -117,6 +128,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
     if (cmd == "render") a.command = Command::Render;
     else if (cmd == "info") a.command = Command::Info;
     else if (cmd == "devices") a.command = Command::Devices;
+    else if (cmd == "merge") a.command = Command::Merge;
     else usage("unknown command '" + cmd + "'");
 
     auto value = [&](const std::string& flag) -> std::string {
@@ -129,6 +141,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         return v;
     };
     bool renderOnly = false;
+    std::string renderOnlyFlag;  // the first render option that merge does not take
+    std::string checkpointEveryFlag;
     bool solidAngleMinGiven = false;
     while (i < args.size()) {
         const std::string f = args[i++];
@@ -155,6 +169,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;
+            if (f != "-o" && f != "--partial" && f != "--exposure" && f != "--quiet" && f != "-q" && renderOnlyFlag.empty()) renderOnlyFlag = f;
             if (f == "-o") a.session.outputs.emplace_back(value(f));
             else if (f == "--spp") a.spp = parseUint(f, value(f), 1, 1u << 24);
             else if (f == "--time") a.session.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
@@ -209,11 +224,39 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--error-log") a.errorLog = fileValue(f);
             else if (f == "--stats-json") a.statsJson = fileValue(f);
             else if (f == "--quiet" || f == "-q") a.session.quiet = true;
+            else if (f == "--checkpoint") a.session.checkpoint = fileValue(f);
+            else if (f == "--checkpoint-every") {
+                a.session.checkpointEvery = parseDouble(f, value(f), 1e-3, 1e7);
+                checkpointEveryFlag = f;
+            } else if (f == "--resume") a.resume = fileValue(f);
+            else if (f == "--partial") a.session.partial = fileValue(f);
+            else if (f == "--sample-range") {
+                const std::string v = value(f);
+                const std::size_t colon = v.find(':');
+                if (colon == std::string::npos) usage("--sample-range wants A:B (samples A to B-1), got '" + v + "'");
+                const std::uint32_t from = parseUint(f, v.substr(0, colon), 0, 1u << 24);
+                const std::uint32_t to = parseUint(f, v.substr(colon + 1), 1, 1u << 24);
+                if (from >= to) usage("--sample-range A:B wants A < B, got '" + v + "'");
+                a.sampleRange.emplace(from, to);
+            }
             else usage("unknown option '" + f + "'");
+            continue;
+        }
+        if (a.command == Command::Merge) {
+            a.parts.emplace_back(f);
             continue;
         }
         if (!a.scene.empty() || a.command == Command::Devices) usage("unexpected argument '" + f + "'");
         a.scene = f;
+    }
+    if (a.command == Command::Merge) {
+        if (a.width || a.height || !a.device.empty() || a.validate || a.gltfScene || a.camera || a.background ||
+            !a.environment.empty() || a.environmentStrength || a.environmentRotate || !a.instancing)
+            usage("vkpath merge takes -o, --partial, --exposure and --quiet only");
+        if (!renderOnlyFlag.empty()) usage("vkpath merge takes -o, --partial, --exposure and --quiet, not " + renderOnlyFlag);
+        if (a.parts.empty()) usage("vkpath merge needs partial files (written by vkpath render --partial)");
+        if (a.session.outputs.empty() && a.session.partial.empty()) usage("vkpath merge needs -o OUT or --partial FILE");
+        return a;
     }
     if ((a.command == Command::Render || a.command == Command::Info) && a.scene.empty())
         usage(std::string("vkpath ") + (a.command == Command::Render ? "render" : "info") + " needs a scene file");
@@ -222,6 +265,10 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
     if (a.background && !a.environment.empty()) usage("--background and --environment exclude each other (one environment light)");
     if (a.background && (a.environmentStrength || a.environmentRotate))
         usage("--environment-strength and --environment-rotate apply to a map, not to --background");
+    if (!checkpointEveryFlag.empty() && a.session.checkpoint.empty()) usage("--checkpoint-every needs --checkpoint FILE");
+    if (a.sampleRange && a.spp) usage("--sample-range A:B replaces --spp (its B is where the render stops)");
+    if (a.sampleRange && a.render.adaptive())
+        usage("--sample-range does not work with --adaptive: adaptive decisions need every earlier sample of a pixel");
     if (solidAngleMinGiven && a.render.lightSampling != LightSampling::Auto)
         usage("--solid-angle-min applies to --light-sampling auto only");
     return a;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,7 @@
 
 namespace vkp {
 
-enum class Command { Help, Version, Render, Info, Devices };
+enum class Command { Help, Version, Render, Info, Devices, Merge };
 
 struct CliArgs {
     Command command = Command::Help;
@@ -39,6 +40,12 @@ struct CliArgs {
     std::optional<glm::vec3> background;
     std::filesystem::path environment;
     std::optional<float> environmentStrength, environmentRotate;
+    /// `--resume FILE`: continue the checkpoint FILE (render/accum_file.h) of the same render.
+    std::filesystem::path resume;
+    /// `--sample-range A:B`: render samples [A, B) of every pixel (B replaces --spp).
+    std::optional<std::pair<std::uint32_t, std::uint32_t>> sampleRange;
+    /// `vkpath merge PART...`: the partial files to add up (outputs: session.outputs, .partial).
+    std::vector<std::filesystem::path> parts;
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

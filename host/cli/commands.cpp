@@ -3,6 +3,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <csignal>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -13,6 +14,9 @@
 #include "bvh/two_level.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/interrupt.h"
+#include "render/accum_file.h"
+#include "render/render_key.h"
 #include "render/error_metrics.h"
 #include "render/features.h"
 #include "render/gpu_arrays.h"
@@ -113,8 +117,9 @@ RenderJob makeJob(const CliArgs& a) {
     if (a.seed) s.render.seed = *a.seed;
     job.options = a.render;
     job.session = a.session;
-    job.session.spp = s.render.spp;
-    if (job.session.outputs.empty()) job.session.outputs.push_back(a.scene.stem().string() + ".png");
+    job.session.spp = a.sampleRange ? a.sampleRange->second : s.render.spp;
+    // The default output, unless the render's result is its partial file (a sample range's).
+    if (job.session.outputs.empty() && job.session.partial.empty()) job.session.outputs.push_back(a.scene.stem().string() + ".png");
     return job;
 }
 
@@ -125,13 +130,38 @@ std::size_t countShapes(const Scene& s, ShapeType t) {
 }
 }  // namespace
 
+namespace {
+/// The folder of progressive dumps can take files: created if missing (the only thing made before
+/// the render), refused when it is a file or cannot take one.
+void checkDumpDir(const std::filesystem::path& dir) {
+    std::error_code ec;
+    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+        throw InputError(dir.string() + ": --dump-dir is not a folder");
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InputError(dir.string() + ": --dump-dir cannot be created: " + ec.message());
+    checkCanCreateFile(dir / dumpFileName(0, ImageFormat::Png));
+}
+
+/// Says that a signal came before the first sample; the exit code for it.
+int stoppedEarly(int signo) {
+    std::fprintf(stderr, "vkpath: %s before the first sample: nothing written\n", signo == SIGINT ? "SIGINT" : "SIGTERM");
+    return exitCodeForSignal(signo);
+}
+}  // namespace
+
 int runRender(const CliArgs& a, Clock::time_point processStart) {
+    installInterruptHandlers();
     auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     auto t = Clock::now();
     RenderJob job = makeJob(a);
     const double secondsSceneLoad = since(t);
-    // Fail before the render and leave no file: outputs, the reference, the logs.
+    // Fail before the render and leave no file: outputs, the reference, the logs, the state files.
     for (const auto& o : job.session.outputs) checkOutputPath(o);
+    if (!job.session.checkpoint.empty()) checkCanCreateFile(job.session.checkpoint);
+    if (!job.session.partial.empty()) checkCanCreateFile(job.session.partial);
+    if (job.session.dumpEvery) checkDumpDir(job.session.dumpDir);
+    std::optional<AccumFile> resume;
+    if (!a.resume.empty()) resume = readAccumFile(a.resume);
     std::optional<Image> reference;
     if (!a.reference.empty()) reference = readReferenceImage(a.reference, job.scene.camera.width, job.scene.camera.height);
     if (!a.errorLog.empty()) checkCanCreateFile(a.errorLog);
@@ -141,13 +171,31 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     const FlatBvh bvh = buildSceneBvh(job.scene);
     const GpuArrays arrays = packGpuArrays(job.scene, bvh, job.options);
     const double secondsBvh = since(t);
+    job.session.key = renderKey(arrays, job.options);
+    const std::uint32_t firstSample = a.sampleRange ? a.sampleRange->first : 0;
+    if (resume) {
+        const std::string what = a.resume.string() + ": cannot resume";
+        if (const std::string m = keyMismatch(resume->key, job.session.key); !m.empty()) throw InputError(what + ": " + m);
+        const RenderState& st = resume->state;
+        if (st.firstSample != firstSample)
+            throw InputError(what + ": it holds samples from " + std::to_string(st.firstSample) + " on, this render starts at " +
+                             std::to_string(firstSample) + (a.sampleRange ? "" : " (give its --sample-range)"));
+        if (st.nextSample > job.session.spp)
+            throw InputError(what + ": it already holds samples up to " + std::to_string(st.nextSample) + ", beyond this render's end " +
+                             std::to_string(job.session.spp) + (a.sampleRange ? " (--sample-range)" : " (--spp)"));
+    }
+    if (const int sig = interruptSignal()) return stoppedEarly(sig);
     t = Clock::now();
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);
     const double secondsSetup = since(t);
     t = Clock::now();
     Renderer renderer(device, arrays, job.options);  // refuses a render that does not fit the device
+    if (resume) renderer.restore(resume->state, a.resume.string());
+    else if (firstSample) renderer.startAt(firstSample);
+    resume.reset();  // its arrays are on the device now
     const double secondsUpload = since(t);
+    if (const int sig = interruptSignal()) return stoppedEarly(sig);
     if (!job.session.quiet)
         std::fprintf(stderr, "vkpath: %s, %ux%u, %u spp, device %s, variant %s\n", a.scene.string().c_str(),
                      job.scene.camera.width, job.scene.camera.height, job.session.spp, device.info().name.c_str(),
@@ -167,10 +215,14 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
 
     const double samples = double(r.samplesTaken);
     const double rs = std::max(r.renderSeconds, 1e-9);
+    if (r.signal)
+        std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", r.signal == SIGINT ? "SIGINT" : "SIGTERM", r.spp, job.session.spp);
+    if (r.firstSample)
+        std::fprintf(stderr, "vkpath: samples [%u:%u) of every pixel\n", r.firstSample, r.spp);
     std::fprintf(stderr,
                  "vkpath: %u spp in %.2f s (rendering %.2f s, first sample %.2f s): %.3f M samples/s, %.3f M rays/s, "
                  "%llu non-finite samples dropped\n",
-                 r.spp, r.seconds, r.renderSeconds, r.firstBatchSeconds, samples / rs / 1e6, double(r.counters.rays) / rs / 1e6,
+                 r.spp - r.firstSample, r.seconds, r.renderSeconds, r.firstBatchSeconds, samples / rs / 1e6, double(r.counters.rays) / rs / 1e6,
                  static_cast<unsigned long long>(r.counters.nonfinite));
     if (renderer.adaptive())
         std::fprintf(stderr, "vkpath: adaptive sampling: %.1f samples per pixel on average, %u of %llu pixels still active\n",
@@ -183,6 +235,9 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         std::fprintf(stderr, "vkpath: error against %s: rmse %.6g, relMSE %.6g\n", a.reference.string().c_str(),
                      lastError.rmse, lastError.relmse);
     for (const auto& o : job.session.outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
+    if (!job.session.partial.empty()) std::fprintf(stderr, "vkpath: wrote %s\n", job.session.partial.string().c_str());
+    if (!job.session.checkpoint.empty())
+        std::fprintf(stderr, "vkpath: wrote %s (checkpoint at sample %u)\n", job.session.checkpoint.string().c_str(), r.spp);
     if (log) std::fprintf(stderr, "vkpath: wrote %s (%zu rows)\n", a.errorLog.string().c_str(), log->rows());
 
     if (!a.statsJson.empty()) {
@@ -210,7 +265,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         writeRunStatsJson(st, a.statsJson);
         std::fprintf(stderr, "vkpath: wrote %s\n", a.statsJson.string().c_str());
     }
-    return kExitOk;
+    return r.signal ? exitCodeForSignal(r.signal) : kExitOk;
 }
 
 namespace {

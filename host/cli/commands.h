@@ -9,4 +9,6 @@ namespace vkp {
 int runRender(const CliArgs& args, std::chrono::steady_clock::time_point processStart);
 int runInfo(const CliArgs& args);
 int runDevices(const CliArgs& args);
+/// `vkpath merge PART... -o OUT`: adds up partial files (render/merge.h) and writes the image.
+int runMerge(const CliArgs& args);
 }  // namespace vkp

@@ -7,11 +7,13 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <streambuf>
 #include <system_error>
 
 #include "core/errors.h"
+#include "core/interrupt.h"
 
 namespace vkp {
 namespace fs = std::filesystem;
@@ -56,6 +58,7 @@ struct TempFile {
     fs::path path;
     int fd = -1;
     bool committed = false;
+    std::unique_ptr<TempFileGuard> guard;  ///< a second SIGINT/SIGTERM deletes the file (core/interrupt.h)
 
     TempFile() = default;
     TempFile(const TempFile&) = delete;
@@ -72,10 +75,12 @@ void createTemp(const fs::path& dest, TempFile& tmp) {
     const std::string prefix = atomicTempPrefix(dest) + std::to_string(::getpid()) + "-";
     for (int attempt = 0;; ++attempt) {
         fs::path candidate = dir / (prefix + std::to_string(g_tempCounter.fetch_add(1)));
+        auto guard = std::make_unique<TempFileGuard>(candidate.c_str());  // before the file exists
         const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
             tmp.path = std::move(candidate);
             tmp.fd = fd;
+            tmp.guard = std::move(guard);
             break;
         }
         const int err = errno;
@@ -86,8 +91,8 @@ void createTemp(const fs::path& dest, TempFile& tmp) {
     if (destMode >= 0) (void)::fchmod(tmp.fd, mode_t(destMode));  // best effort: keep permissions
 }
 
-/// fsync + close the temporary file, rename it over dest, fsync the directory (best effort).
-void commit(const fs::path& dest, TempFile& tmp) {
+/// fsync + close the temporary file (commit's first half).
+void syncAndClose(const fs::path& dest, TempFile& tmp) {
     if (::fsync(tmp.fd) != 0) {
         const int err = errno;
         fail(dest, "cannot sync '" + tmp.path.string() + "'", err);
@@ -98,17 +103,29 @@ void commit(const fs::path& dest, TempFile& tmp) {
         const int err = errno;
         fail(dest, "cannot close '" + tmp.path.string() + "'", err);
     }
+}
+
+/// Renames the synced temporary file over dest, fsyncs the directory (best effort).
+void renameOver(const fs::path& dest, TempFile& tmp) {
     if (::rename(tmp.path.c_str(), dest.c_str()) != 0) {
         const int err = errno;
         fail(dest, "cannot rename '" + tmp.path.string() + "' to it", err);
     }
     tmp.committed = true;
+    tmp.guard.reset();
     const int dirFd = ::open(directoryOf(dest).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dirFd >= 0) {
         (void)::fsync(dirFd);  // makes the rename durable; some file systems refuse, that is fine
         ::close(dirFd);
     }
 }
+
+/// fsync + close the temporary file, rename it over dest, fsync the directory (best effort).
+void commit(const fs::path& dest, TempFile& tmp) {
+    syncAndClose(dest, tmp);
+    renameOver(dest, tmp);
+}
+
 
 /// An output stream buffer writing to a file descriptor, remembering the first write error.
 class FdStreamBuf : public std::streambuf {
@@ -161,18 +178,33 @@ private:
 
 std::string atomicTempPrefix(const fs::path& dest) { return "." + dest.filename().string() + ".tmp-"; }
 
+namespace {
+void writeInto(const fs::path& dest, TempFile& tmp, const std::function<void(std::ostream&)>& write) {
+    FdStreamBuf buf(tmp.fd);
+    std::ostream os(&buf);
+    write(os);
+    os.flush();
+    if (buf.error() != 0) fail(dest, "cannot write '" + tmp.path.string() + "'", buf.error());
+    if (!os) fail(dest, "writing '" + tmp.path.string() + "' failed", 0);
+}
+}  // namespace
+
 void writeFileAtomic(const fs::path& dest, const std::function<void(std::ostream&)>& write) {
     TempFile tmp;
     createTemp(dest, tmp);
-    {
-        FdStreamBuf buf(tmp.fd);
-        std::ostream os(&buf);
-        write(os);
-        os.flush();
-        if (buf.error() != 0) fail(dest, "cannot write '" + tmp.path.string() + "'", buf.error());
-        if (!os) fail(dest, "writing '" + tmp.path.string() + "' failed", 0);
-    }
+    writeInto(dest, tmp, write);
     commit(dest, tmp);
+}
+
+void writeFilesAtomic(const std::vector<AtomicWrite>& files) {
+    std::vector<std::unique_ptr<TempFile>> tmps;  // removed by their destructors unless renamed
+    for (const AtomicWrite& f : files) {
+        tmps.push_back(std::make_unique<TempFile>());
+        createTemp(f.dest, *tmps.back());
+        writeInto(f.dest, *tmps.back(), f.write);
+        syncAndClose(f.dest, *tmps.back());
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) renameOver(files[i].dest, *tmps[i]);
 }
 
 void writeFileAtomicViaPath(const fs::path& dest, const std::function<void(const fs::path&)>& write) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace vkp {
 
@@ -17,6 +18,18 @@ namespace vkp {
 /// exception is thrown: InputError "<dest>: <what failed>: <reason>" for I/O failures, or
 /// whatever `write` threw.
 void writeFileAtomic(const std::filesystem::path& dest, const std::function<void(std::ostream&)>& write);
+
+/// One file of writeFilesAtomic: its destination and what to write into it.
+struct AtomicWrite {
+    std::filesystem::path dest;
+    std::function<void(std::ostream&)> write;
+};
+
+/// Replaces every file of `files`, all or none: each is written to its own temporary file and
+/// synced first; only when every one succeeded are they renamed over their destinations, in order.
+/// On a failure before the renames every temporary file is removed, every destination untouched,
+/// and the error is thrown as by writeFileAtomic. Two entries must not name the same destination.
+void writeFilesAtomic(const std::vector<AtomicWrite>& files);
 
 /// The same for libraries that can only write to a path: `write` receives the path of an empty
 /// temporary file in dest's directory and must (re)write it completely, throwing on failure. The

@@ -42,7 +42,8 @@ struct ImageGuard {
 
 }  // namespace
 
-void encodeExr(const Image& image, std::ostream& out, const std::string& name) {
+void encodeExr(const Image& image, std::ostream& out, const std::string& name,
+               const std::vector<std::pair<std::string, std::string>>& metadata) {
     const size_t n = image.pixelCount();
     // Planar channels in the order EXR lists them (alphabetical): B, G, R.
     std::array<std::vector<float>, 3> planes;
@@ -67,6 +68,18 @@ void encodeExr(const Image& image, std::ostream& out, const std::string& name) {
     header.pixel_types = pixelTypes.data();
     header.requested_pixel_types = requestedTypes.data();
     header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;  // lossless
+    std::vector<std::string> values;  // tinyexr wants mutable bytes
+    for (const auto& m : metadata) values.push_back(m.second);
+    std::vector<EXRAttribute> attributes(metadata.size());
+    for (std::size_t k = 0; k < metadata.size(); ++k) {
+        std::memset(&attributes[k], 0, sizeof(EXRAttribute));
+        std::strncpy(attributes[k].name, metadata[k].first.c_str(), sizeof(attributes[k].name) - 1);
+        std::strcpy(attributes[k].type, "string");
+        attributes[k].value = reinterpret_cast<unsigned char*>(values[k].data());
+        attributes[k].size = int(values[k].size());
+    }
+    header.num_custom_attributes = int(attributes.size());
+    header.custom_attributes = attributes.empty() ? nullptr : attributes.data();
 
     EXRImage exr;
     InitEXRImage(&exr);

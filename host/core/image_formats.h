@@ -4,6 +4,8 @@
 #include <iosfwd>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/image.h"
 
@@ -15,7 +17,9 @@ void encodePfm(const Image& image, std::ostream& out);
 Image decodePfm(std::span<const uint8_t> bytes, const std::string& name);
 
 /// OpenEXR scanline image, FLOAT channels B,G,R, ZIP compression, via tinyexr.
-void encodeExr(const Image& image, std::ostream& out, const std::string& name);
+/// `metadata`: (name, value) string attributes of the header.
+void encodeExr(const Image& image, std::ostream& out, const std::string& name,
+               const std::vector<std::pair<std::string, std::string>>& metadata = {});
 /// Reads a single-part scanline EXR with R,G,B (or one Y) channels of HALF or FLOAT type.
 Image decodeExr(std::span<const uint8_t> bytes, const std::string& name);
 

@@ -8,6 +8,7 @@
 #include <climits>
 #include <fstream>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
@@ -42,6 +43,41 @@ void encodePng(const Image& image, const WriteOptions& options, std::ostream& ou
     if (!stbi_write_png_to_func(writeToStream, &out, w, h, 3, srgb.data(), 3 * w)) {
         throw InputError(name + ": cannot encode PNG");
     }
+}
+
+/// CRC-32 of PNG chunks (ISO 3309 / ITU-T V.42, the PNG specification's Annex D).
+std::uint32_t pngCrc(const std::string& bytes) {
+    std::uint32_t c = 0xffffffffu;
+    for (unsigned char b : bytes) {
+        c ^= b;
+        for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xffffffffu;
+}
+
+void putBigEndian(std::string& s, std::uint32_t v) {
+    for (int k = 3; k >= 0; --k) s.push_back(char((v >> (8 * k)) & 0xffu));
+}
+
+/// `png` with one tEXt chunk per metadata entry after IHDR (8-byte signature + 25-byte IHDR).
+std::string withPngText(std::string png, const std::vector<std::pair<std::string, std::string>>& metadata) {
+    std::string chunks;
+    for (const auto& [key, value] : metadata) {
+        const std::string body = "tEXt" + key + std::string(1, '\0') + value;
+        putBigEndian(chunks, std::uint32_t(body.size() - 4));
+        chunks += body;
+        putBigEndian(chunks, pngCrc(body));
+    }
+    png.insert(33, chunks);
+    return png;
+}
+
+/// Radiance HDR with "name=value" header lines after the signature line.
+std::string withHdrLines(std::string hdr, const std::vector<std::pair<std::string, std::string>>& metadata) {
+    std::string lines;
+    for (const auto& [key, value] : metadata) lines += key + "=" + value + "\n";
+    hdr.insert(hdr.find('\n') + 1, lines);
+    return hdr;
 }
 
 std::vector<uint8_t> readFileBytes(const fs::path& path) {
@@ -87,6 +123,14 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
                  const std::string& name) {
     image.checkConsistent();
     if (image.empty()) throw std::invalid_argument(name + ": cannot write an empty image");
+    if (!options.metadata.empty() && (format == ImageFormat::Png || format == ImageFormat::Hdr)) {
+        std::ostringstream plain;
+        WriteOptions without = options;
+        without.metadata.clear();
+        encodeImage(image, format, without, plain, name);
+        out << (format == ImageFormat::Png ? withPngText(plain.str(), options.metadata) : withHdrLines(plain.str(), options.metadata));
+        return;
+    }
     switch (format) {
         case ImageFormat::Png:
             checkIntSized(image, name, "PNG");
@@ -94,7 +138,7 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
             return;
         case ImageFormat::Exr:
             checkIntSized(image, name, "EXR");
-            detail::encodeExr(image, out, name);
+            detail::encodeExr(image, out, name, options.metadata);
             return;
         case ImageFormat::Pfm: detail::encodePfm(image, out); return;
         case ImageFormat::Hdr:
@@ -102,6 +146,17 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
             detail::encodeHdr(image, out, name);
             return;
     }
+}
+
+void writeImages(const Image& image, const std::vector<fs::path>& paths, const WriteOptions& options,
+                 std::vector<AtomicWrite> more) {
+    std::vector<AtomicWrite> files;
+    for (const fs::path& p : paths) {
+        const ImageFormat format = imageFormatFromPath(p);
+        files.push_back({p, [&image, &options, format, p](std::ostream& out) { encodeImage(image, format, options, out, p.string()); }});
+    }
+    for (AtomicWrite& m : more) files.push_back(std::move(m));
+    writeFilesAtomic(files);
 }
 
 void writeImage(const Image& image, const fs::path& path, const WriteOptions& options) {

@@ -11,7 +11,10 @@
 #include <iosfwd>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "core/atomic_file.h"
 #include "core/image.h"
 
 namespace vkp {
@@ -23,6 +26,10 @@ struct WriteOptions {
     /// Exposure in stops: display-referred (PNG) output is multiplied by 2^exposure before
     /// clamping and sRGB encoding. Linear formats (EXR, PFM, HDR) store radiance unscaled.
     double exposure = 0.0;
+    /// Text metadata, (name, value), e.g. ("vkpath.spp", "64"): EXR string attributes, PNG tEXt
+    /// chunks (name: 1-79 Latin-1 characters), Radiance HDR header lines "name=value" (no newline
+    /// in either). PFM has no place for it.
+    std::vector<std::pair<std::string, std::string>> metadata;
 };
 
 /// The format for `path`'s extension (case-insensitive). Throws InputError
@@ -44,6 +51,12 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
 /// file (if any) is untouched and no temporary file is left. Throws InputError "<path>: ..." for an
 /// unknown extension or an I/O failure.
 void writeImage(const Image& image, const std::filesystem::path& path, const WriteOptions& options = {});
+
+/// Writes `image` to every path of `paths` (format by extension) and the files of `more`, all or
+/// none (core/atomic_file.h writeFilesAtomic): when one fails, none is replaced and no temporary
+/// file is left. Throws InputError "<path>: ..." naming the first that failed.
+void writeImages(const Image& image, const std::vector<std::filesystem::path>& paths, const WriteOptions& options,
+                 std::vector<AtomicWrite> more = {});
 
 /// Validates an output path before a long render: known extension, existing writable directory,
 /// not a directory itself. Throws InputError "<path>: ..." (exit code 1) otherwise. Leaves no file.

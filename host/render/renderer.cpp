@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/errors.h"
 #include "pathtrace.spv.h"
@@ -9,6 +10,7 @@
 #include "render/gpu_arrays.h"
 #include "render/gpu_scene.h"
 #include "render/kernel_bindings.h"
+#include "render/render_state.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
@@ -252,6 +254,99 @@ void Renderer::updateAdaptive() {
         if (!list.empty()) bb.active->upload(list.data(), list.size() * 4);
         bb.activeCount = std::uint32_t(list.size());
     }
+}
+
+void Renderer::startAt(std::uint32_t first) {
+    if (done_ != first_ || taken_ != 0) throw std::logic_error("Renderer::startAt after samples were added");
+    if (adaptive() && first != 0) throw std::logic_error("Renderer::startAt: adaptive sampling starts at sample 0");
+    first_ = done_ = first;
+}
+
+namespace {
+/// Reads one per-pixel binding of every band into `out` (kStateFloatsPerPixel floats per pixel).
+template <class Bands>
+void downloadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, std::vector<float>& out) {
+    for (auto& bb : bands)
+        bb.at(binding).download(out.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
+                                std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+}
+template <class Bands>
+void uploadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, const std::vector<float>& in) {
+    for (auto& bb : bands)
+        bb.at(binding).upload(in.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
+                              std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+}
+}  // namespace
+
+RenderState Renderer::state() {
+    RenderState st;
+    st.width = width_;
+    st.height = height_;
+    st.firstSample = first_;
+    st.nextSample = done_;
+    st.samplesTaken = taken_;
+    st.counters = counters();
+    const std::size_t floats = std::size_t(width_) * height_ * kStateFloatsPerPixel;
+    st.sum.resize(floats);
+    st.sumSq.resize(floats);
+    downloadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SUM, width_, st.sum);
+    downloadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SQ, width_, st.sumSq);
+    if (adaptive()) {
+        st.decision.resize(floats);
+        downloadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, st.decision);
+        st.active = activeMask_;
+    }
+    return st;
+}
+
+void Renderer::restore(const RenderState& st, const std::string& what) {
+    if (st.width != width_ || st.height != height_)
+        throw InputError(what + ": the state is of a " + std::to_string(st.width) + "x" + std::to_string(st.height) +
+                         " image, this render is " + std::to_string(width_) + "x" + std::to_string(height_));
+    if (st.adaptive() != adaptive())
+        throw InputError(what + (adaptive() ? ": the state has no adaptive sampling, this render has"
+                                            : ": the state has adaptive sampling, this render has not"));
+    const std::size_t floats = std::size_t(width_) * height_ * kStateFloatsPerPixel;
+    if (st.sum.size() != floats || st.sumSq.size() != floats || (adaptive() && (st.decision.size() != floats || st.active.size() != floats / kStateFloatsPerPixel)))
+        throw InputError(what + ": the state's arrays do not match its size");
+    if (st.nextSample < st.firstSample) throw InputError(what + ": the state's next sample precedes its first");
+    uploadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SUM, width_, st.sum);
+    uploadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SQ, width_, st.sumSq);
+    std::uint32_t raw[gpu::COUNTER_COUNT] = {};
+    raw[gpu::COUNTER_NONFINITE] = std::uint32_t(st.counters.nonfinite);
+    raw[gpu::COUNTER_RAYS_LO] = std::uint32_t(st.counters.rays);
+    raw[gpu::COUNTER_RAYS_HI] = std::uint32_t(st.counters.rays >> 32);
+    raw[gpu::COUNTER_LOOP_GUARD] = std::uint32_t(st.counters.loopGuard);
+    impl_->counters().upload(raw, sizeof(raw));
+    first_ = st.firstSample;
+    done_ = st.nextSample;
+    taken_ = st.samplesTaken;
+    if (adaptive()) {
+        uploadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, st.decision);
+        activeMask_ = st.active;
+        active_ = 0;
+        for (std::uint8_t a : activeMask_) active_ += a != 0;
+        for (Impl::BandBuffers& bb : impl_->bands) {
+            const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, bb.band.firstRow, bb.band.rows);
+            if (!list.empty()) bb.active->upload(list.data(), list.size() * 4);
+            bb.activeCount = std::uint32_t(list.size());
+        }
+    }
+}
+
+PixelSums RenderState::pixelSums() const {
+    PixelSums s;
+    s.width = width;
+    s.height = height;
+    const std::size_t n = std::size_t(pixels());
+    s.sum.resize(n * 4);
+    s.sumSq.resize(n * 4);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 4; ++c) {
+            s.sum[4 * i + c] = double(sum[8 * i + c]) + double(sum[8 * i + 4 + c]);
+            s.sumSq[4 * i + c] = double(sumSq[8 * i + c]) + double(sumSq[8 * i + 4 + c]);
+        }
+    return s;
 }
 
 PixelSums Renderer::readSums() {

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
@@ -14,6 +15,7 @@ namespace vkp {
 
 class VulkanDevice;
 struct GpuArrays;
+struct RenderState;
 struct DeviceLimits;
 
 /// Totals since the render began.
@@ -53,8 +55,22 @@ public:
     /// stops the pixels that have converged. Throws VulkanError on a device failure or a validation
     /// message.
     void addSamples(std::uint32_t count);
-    /// Sample indices every active pixel has had (the spp of an image without adaptive sampling).
+    /// The next sample index: every active pixel has had samples [firstSample(), samplesDone())
+    /// (the spp of an image without adaptive sampling when firstSample() is 0).
     std::uint32_t samplesDone() const { return done_; }
+    /// The first sample index of this render: 0, or where startAt or restore put it.
+    std::uint32_t firstSample() const { return first_; }
+    /// Before any sample: the render takes samples from index `first` on (`--sample-range`).
+    /// Throws std::logic_error after samples were added or with adaptive sampling (whose decisions
+    /// need every earlier sample).
+    void startAt(std::uint32_t first);
+    /// Everything that decides the next images (sums, counts, adaptive state, counters), read back.
+    RenderState state();
+    /// Continues from `state` (read from a checkpoint of a render with the same key): the next
+    /// samples are added to exactly these sums, so the images equal those of a render that was
+    /// never interrupted, bit for bit. Throws InputError "<what>: ..." when its size or adaptive
+    /// sampling does not match this renderer's.
+    void restore(const RenderState& state, const std::string& what);
     /// Samples taken over all pixels (with adaptive sampling, the decision stream's included).
     std::uint64_t samplesTaken() const { return taken_; }
     /// Pixels still receiving samples (all of them unless adaptive sampling is on).
@@ -88,6 +104,7 @@ private:
     bool autoSpd_, linearTiles_;
     std::uint64_t sceneBytes_ = 0;
     std::uint32_t done_ = 0;
+    std::uint32_t first_ = 0;
     std::uint32_t maxPasses_ = 0;
     std::uint64_t taken_ = 0;
     std::uint32_t active_ = 0;

@@ -2,11 +2,16 @@
 
 #include <unistd.h>
 
+#include <csignal>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "core/errors.h"
+#include "core/interrupt.h"
+#include "render/accum_file.h"
 
 namespace vkp {
 
@@ -58,12 +63,16 @@ private:
     double last_ = -1e9;
 };
 
-void writeAll(const Image& img, const std::vector<std::filesystem::path>& paths, double exposure) {
-    WriteOptions wo;
-    wo.exposure = exposure;
-    for (const auto& p : paths) writeImage(img, p, wo);
-}
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> imageMetadata(std::uint32_t first, std::uint32_t next, int signal) {
+    std::vector<std::pair<std::string, std::string>> m;
+    m.emplace_back("vkpath.version", VKPATH_VERSION);
+    m.emplace_back("vkpath.spp", std::to_string(next - first));
+    m.emplace_back("vkpath.samples", std::to_string(first) + ":" + std::to_string(next));
+    if (signal) m.emplace_back("vkpath.interrupted", signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : std::to_string(signal));
+    return m;
+}
 
 std::string dumpFileName(std::uint32_t spp, ImageFormat format) {
     char buf[64];
@@ -91,7 +100,8 @@ void writeDumps(const Image& img, const SessionOptions& o, std::uint32_t spp) {
 
 SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::time_point processStart) {
     SessionResult res;
-    Progress progress(o.quiet, o.spp);
+    const std::uint32_t first = renderer.firstSample();
+    Progress progress(o.quiet, o.spp - std::min(o.spp, first));
     const std::uint64_t pixels = renderer.readSums().sum.size() / 4;
     res.pixels = pixels;
     const bool powersOfTwo = o.onCheckpoint && o.checkpointPowersOfTwo && o.dumpEvery == 0;
@@ -111,8 +121,9 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     double perSample = 0.0;  // seconds per spp, measured
     int batches = 0;
     constexpr double kBatchSeconds = 0.5;  // aim for a submit this long: progress stays live
+    auto lastStateWrite = Clock::now();
     // With adaptive sampling the render also ends when every pixel has converged.
-    while (renderer.samplesDone() < o.spp && renderer.activePixels() > 0) {
+    while (renderer.samplesDone() < o.spp && renderer.activePixels() > 0 && !interruptSignal()) {
         const std::uint32_t done = renderer.samplesDone();
         std::uint32_t n = 1;  // the first batch is one sample: time to first pixel, JIT included
         if (perSample > 0.0) n = std::uint32_t(std::clamp(kBatchSeconds / perSample, 1.0, 256.0));
@@ -129,7 +140,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         const auto t0 = Clock::now();
         renderer.addSamples(n);
         const double dt = secondsSince(t0);
-        if (done == 0) {
+        if (batches == 0) {
             res.firstBatchSeconds = dt;
             res.firstSampleAt = secondsSince(processStart);
         }
@@ -140,11 +151,18 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         ++batches;
         const std::uint32_t now = renderer.samplesDone();
         const RenderCounters c = renderer.counters();
-        if (done == 0) res.firstBatchRays = c.rays;
+        if (batches == 1) res.firstBatchRays = c.rays;
         const double eta = double(o.spp - now) * perSample;
-        progress.update(now, res.renderSeconds, double(renderer.samplesTaken()), double(c.rays), eta,
+        progress.update(now - first, res.renderSeconds, double(renderer.samplesTaken()), double(c.rays), eta,
                         now == o.spp || renderer.activePixels() == 0);
-        if (now < o.spp) {
+        if (!o.checkpoint.empty() && now < o.spp && secondsSince(lastStateWrite) >= o.checkpointEvery && !interruptSignal()) {
+            const auto t1 = Clock::now();
+            writeAccumFile(o.checkpoint, o.key, renderer.state());
+            ++res.stateWrites;
+            lastStateWrite = Clock::now();
+            res.checkpointSeconds += secondsSince(t1);
+        }
+        if (now < o.spp && !interruptSignal()) {
             const bool dump = o.dumpEvery && now % o.dumpEvery == 0;
             const bool power = powersOfTwo && (now & (now - 1)) == 0;
             if (dump || power) {
@@ -159,11 +177,24 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         if (o.timeLimit > 0.0 && secondsSince(processStart) >= o.timeLimit) break;
     }
     progress.finish();
+    res.signal = interruptSignal();
     const Image img = checkpoint(renderer.samplesDone());
     const auto t1 = Clock::now();
-    if (o.dumpEvery) writeDumps(img, o, renderer.samplesDone());
-    writeAll(img, o.outputs, o.exposure);
+    if (o.dumpEvery && !res.signal) writeDumps(img, o, renderer.samplesDone());
+    // The outputs, the partial and the checkpoint: all or none.
+    std::vector<AtomicWrite> states;
+    if (!o.partial.empty() || !o.checkpoint.empty()) {
+        auto state = std::make_shared<RenderState>(renderer.state());
+        for (const std::filesystem::path& p : {o.partial, o.checkpoint})
+            if (!p.empty()) states.push_back({p, [state, &o, p](std::ostream& out) { encodeAccumFile(out, p, o.key, *state); }});
+        res.stateWrites += !o.checkpoint.empty();
+    }
+    WriteOptions wo;
+    wo.exposure = o.exposure;
+    wo.metadata = imageMetadata(first, renderer.samplesDone(), res.signal);
+    writeImages(img, o.outputs, wo, std::move(states));
     res.outputSeconds += secondsSince(t1);
+    res.firstSample = first;
     res.spp = renderer.samplesDone();
     res.samplesTaken = renderer.samplesTaken();
     res.activePixels = renderer.activePixels();

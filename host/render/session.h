@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "render/render_key.h"
 #include "render/renderer.h"
 
 namespace vkp {
@@ -21,7 +22,9 @@ struct Checkpoint {
 };
 
 struct SessionOptions {
-    std::uint32_t spp = 64;                        ///< stop after this many samples per pixel
+    /// Stop at this sample index: after samples [renderer.firstSample(), spp) of every pixel (the
+    /// samples per pixel of a render from sample 0; the end B of `--sample-range A:B`).
+    std::uint32_t spp = 64;
     double timeLimit = 0.0;                        ///< seconds since process start; 0 = none
     std::vector<std::filesystem::path> outputs;    ///< final images (format by extension)
     double exposure = 0.0;                         ///< stops, for PNG output
@@ -35,6 +38,14 @@ struct SessionOptions {
     /// the wall time (and towards timeLimit) but not in renderSeconds.
     std::function<void(const Checkpoint&)> onCheckpoint;
     bool checkpointPowersOfTwo = false;
+    /// `--checkpoint FILE`: the render's state (render/accum_file.h) every checkpointEvery seconds
+    /// of wall time, at a signal and at the end, atomically; the last one stays if the render fails.
+    std::filesystem::path checkpoint;
+    double checkpointEvery = 60.0;
+    /// `--partial FILE.exr`: the state at the end (also after a signal), for `vkpath merge`.
+    std::filesystem::path partial;
+    /// The render's key, written into the checkpoint and the partial (render/render_key.h).
+    RenderKey key;
 };
 
 struct SessionResult {
@@ -51,9 +62,21 @@ struct SessionResult {
     std::uint64_t pixels = 0;
     std::uint64_t samplesTaken = 0;  ///< over all pixels (Renderer::samplesTaken)
     std::uint32_t activePixels = 0;  ///< still active at the end (all unless adaptive sampling is on)
+    std::uint32_t firstSample = 0;   ///< the render held samples [firstSample, spp) at the end
+    int signal = 0;                  ///< SIGINT or SIGTERM that ended the render early (core/interrupt.h), else 0
+    std::uint32_t stateWrites = 0;   ///< checkpoint files written (periodic ones and the final one)
 };
 
+/// The text metadata of an output image of the render that holds samples [first, next):
+/// vkpath.version, vkpath.spp (= next - first; the most any pixel had, with adaptive sampling),
+/// vkpath.samples ("first:next") and, after a signal, vkpath.interrupted ("SIGINT" / "SIGTERM").
+std::vector<std::pair<std::string, std::string>> imageMetadata(std::uint32_t first, std::uint32_t next, int signal);
+
 /// Runs the render. `processStart` is when the process started (the time limit counts from it).
+/// Ends early, after the batch in flight, when SIGINT or SIGTERM arrives (installInterruptHandlers,
+/// core/interrupt.h): the outputs, the partial and the checkpoint are then written with the
+/// samples reached, and SessionResult::signal says so. The outputs, the partial and the final
+/// checkpoint are written all or none (writeImages).
 SessionResult runSession(Renderer& renderer, const SessionOptions& options,
                          std::chrono::steady_clock::time_point processStart);
 

@@ -3,6 +3,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -44,6 +46,63 @@ ProcessResult runProcess(const std::filesystem::path& program, const std::vector
     r.err = slurp(err);
     std::filesystem::remove(out);
     std::filesystem::remove(err);
+    return r;
+}
+
+BackgroundProcess::BackgroundProcess(const std::filesystem::path& program, const std::vector<std::string>& args,
+                                     const std::filesystem::path& cwd) {
+    static int counter = 0;
+    const auto dir = scratchDir("process");
+    const std::string tag = std::to_string(::getpid()) + "-bg" + std::to_string(counter++);
+    out_ = dir / ("out-" + tag + ".txt");
+    err_ = dir / ("err-" + tag + ".txt");
+    std::vector<std::string> argv{program.string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    pid_ = ::fork();
+    if (pid_ == 0) {
+        std::vector<char*> cargv;
+        for (std::string& a : argv) cargv.push_back(a.data());
+        cargv.push_back(nullptr);
+        if (::chdir(cwd.c_str()) != 0) ::_exit(127);
+        if (!std::freopen("/dev/null", "r", stdin) || !std::freopen(out_.c_str(), "w", stdout) || !std::freopen(err_.c_str(), "w", stderr))
+            ::_exit(127);
+        ::execv(cargv[0], cargv.data());
+        ::_exit(127);
+    }
+}
+
+BackgroundProcess::~BackgroundProcess() {
+    if (running()) {
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, &status_, 0);
+    }
+    std::filesystem::remove(out_);
+    std::filesystem::remove(err_);
+}
+
+void BackgroundProcess::signal(int signo) {
+    if (!exited_) ::kill(pid_, signo);
+}
+
+bool BackgroundProcess::running() {
+    if (exited_ || pid_ <= 0) return false;
+    if (::waitpid(pid_, &status_, WNOHANG) == pid_) exited_ = true;
+    return !exited_;
+}
+
+std::string BackgroundProcess::errSoFar() const { return slurp(err_); }
+
+ProcessResult BackgroundProcess::wait(double seconds) {
+    for (int i = 0; i < int(seconds * 100) && running(); ++i) ::usleep(10000);
+    if (running()) {
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, &status_, 0);
+        exited_ = true;
+    }
+    ProcessResult r;
+    r.exitCode = WIFEXITED(status_) ? WEXITSTATUS(status_) : 128 + (WIFSIGNALED(status_) ? WTERMSIG(status_) : 0);
+    r.out = slurp(out_);
+    r.err = slurp(err_);
     return r;
 }
 

@@ -1,0 +1,82 @@
+#include "render/merge.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "core/errors.h"
+
+namespace vkp {
+
+namespace {
+std::string range(const RenderState& s) { return "[" + std::to_string(s.firstSample) + ":" + std::to_string(s.nextSample) + ")"; }
+}  // namespace
+
+AccumFile mergeParts(const std::vector<AccumFile>& parts, const std::vector<std::string>& names) {
+    if (parts.empty()) throw InputError("merge: no parts");
+    const AccumFile& p0 = parts[0];
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const RenderState& s = parts[i].state;
+        if (s.adaptive())
+            throw InputError(names[i] + ": has adaptive sampling, whose parts cannot be merged (its pixels stopped at different samples)");
+        if (i == 0) continue;
+        if (const std::string m = keyMismatch(parts[i].key, p0.key); !m.empty())
+            throw InputError(names[i] + ": a different render than " + names[0] + ": " + m);
+        if (s.width != p0.state.width || s.height != p0.state.height)
+            throw InputError(names[i] + ": " + std::to_string(s.width) + "x" + std::to_string(s.height) + ", " + names[0] + " is " +
+                             std::to_string(p0.state.width) + "x" + std::to_string(p0.state.height));
+    }
+    // In the order of their ranges (empty ranges first), so that the input order does not matter.
+    std::vector<std::size_t> order(parts.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const RenderState &x = parts[a].state, &y = parts[b].state;
+        return x.firstSample != y.firstSample ? x.firstSample < y.firstSample : x.nextSample < y.nextSample;
+    });
+    for (std::size_t k = 1; k < order.size(); ++k) {
+        const std::size_t a = order[k - 1], b = order[k];
+        const RenderState &x = parts[a].state, &y = parts[b].state;
+        if (y.firstSample < x.nextSample)
+            throw InputError(names[b] + ": samples " + range(y) + " overlap " + names[a] + "'s " + range(x));
+        if (y.firstSample > x.nextSample)
+            throw InputError(names[b] + ": samples " + range(y) + " leave a gap after " + names[a] + "'s " + range(x) + ": samples [" +
+                             std::to_string(x.nextSample) + ":" + std::to_string(y.firstSample) + ") are in no part");
+    }
+    AccumFile out;
+    out.key = p0.key;
+    RenderState& m = out.state;
+    m.width = p0.state.width;
+    m.height = p0.state.height;
+    m.firstSample = parts[order.front()].state.firstSample;
+    m.nextSample = parts[order.back()].state.nextSample;
+    const std::size_t floats = std::size_t(m.pixels()) * kStateFloatsPerPixel;
+    m.sum.assign(floats, 0.0f);
+    m.sumSq.assign(floats, 0.0f);
+    std::vector<double> total(floats / 2);
+    for (std::vector<float> RenderState::*array : {&RenderState::sum, &RenderState::sumSq}) {
+        std::fill(total.begin(), total.end(), 0.0);
+        for (std::size_t k : order) {
+            const std::vector<float>& a = parts[k].state.*array;
+            for (std::size_t i = 0; i < total.size(); ++i) {
+                const std::size_t px = i / 4, c = i % 4;
+                total[i] += double(a[px * 8 + c]) + double(a[px * 8 + 4 + c]);
+            }
+        }
+        std::vector<float>& dst = m.*array;
+        for (std::size_t i = 0; i < total.size(); ++i) {
+            const std::size_t px = i / 4, c = i % 4;
+            const float hi = float(total[i]);
+            dst[px * 8 + c] = hi;
+            dst[px * 8 + 4 + c] = float(total[i] - double(hi));
+        }
+    }
+    for (std::size_t k : order) {
+        const RenderState& s = parts[k].state;
+        m.samplesTaken += s.samplesTaken;
+        m.counters.rays += s.counters.rays;
+        m.counters.nonfinite += s.counters.nonfinite;
+        m.counters.loopGuard += s.counters.loopGuard;
+    }
+    return out;
+}
+
+}  // namespace vkp

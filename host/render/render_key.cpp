@@ -1,0 +1,79 @@
+#include "render/render_key.h"
+
+#include <cstdio>
+#include <cstring>
+
+namespace vkp {
+
+namespace {
+/// FNV-1a, 64 bit (Fowler, Noll, Vo): a fingerprint, not a cryptographic hash.
+struct Fnv1a {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    void add(std::span<const std::byte> bytes) {
+        for (std::byte b : bytes) {
+            h ^= std::uint64_t(b);
+            h *= 0x100000001b3ull;
+        }
+    }
+    void add(std::uint64_t v) { add(std::as_bytes(std::span<const std::uint64_t>(&v, 1))); }
+};
+
+std::string number(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+}  // namespace
+
+RenderKey renderKey(const GpuArrays& arrays, const RenderOptions& options) {
+    RenderKey k;
+    auto add = [&](const char* name, std::string value) { k.entries.emplace_back(name, std::move(value)); };
+    add("vkpath", VKPATH_VERSION);
+    add("size", std::to_string(arrays.width) + "x" + std::to_string(arrays.height));
+    add("seed", std::to_string(arrays.frame.size.w));
+    add("max depth", std::to_string(arrays.frame.size.z));
+    add("rr depth", std::to_string(arrays.frame.counts.y));
+    add("sampler", samplerName(options.sampler));
+    add("sequence", sequenceName(options.sequence));
+    add("light pick", lightPickName(options.lightPick));
+    add("light sampling", lightSamplingName(options.lightSampling));
+    add("solid-angle min", number(options.solidAngleMinSize));
+    add("adaptive", options.adaptive() ? number(options.adaptiveThreshold) + " from " + std::to_string(options.adaptiveMinSpp) + " spp" : "off");
+    add("variant", options.fullVariant ? "full" : "auto");
+    Fnv1a h;
+    gpu::GpuFrame frame = arrays.frame;
+    frame.tiles = glm::uvec4(0);  // workgroups per row: the workgroup size, a speed option
+    for (const KernelBinding& b : kKernelBindings) {
+        if (b.binding == VKP_BINDING_ACTIVE) continue;  // the first active-pixel list: every pixel
+        const std::span<const std::byte> data =
+            b.binding == VKP_BINDING_FRAME ? std::as_bytes(std::span<const gpu::GpuFrame>(&frame, 1)) : arrays.hostData(b.binding);
+        h.add(b.binding);
+        h.add(data.size());
+        h.add(data);
+    }
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.h));
+    add("scene", hex);
+    return k;
+}
+
+std::string keyMismatch(const RenderKey& have, const RenderKey& want) {
+    for (const auto& [name, value] : want.entries) {
+        const std::string* other = nullptr;
+        for (const auto& e : have.entries)
+            if (e.first == name) other = &e.second;
+        if (!other) return name + " is missing in it";
+        if (*other != value) {
+            if (name == "scene") return "the scene's content differs (hash " + *other + " in it, " + value + " here)";
+            return name + " is " + *other + " in it, " + value + " here";
+        }
+    }
+    for (const auto& e : have.entries) {
+        bool known = false;
+        for (const auto& w : want.entries) known = known || w.first == e.first;
+        if (!known) return e.first + " is unknown here";
+    }
+    return {};
+}
+
+}  // namespace vkp

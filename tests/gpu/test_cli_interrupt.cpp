@@ -1,0 +1,205 @@
+// Renders that survive interruption (issue 15): SIGINT/SIGTERM write every output with the samples
+// reached and exit 130/143; a checkpoint continued with --resume gives the uninterrupted render's
+// file bit for bit (with and without adaptive sampling, interrupted by a real signal); sample
+// ranges merge to the single render within float rounding; bad combinations are refused up front.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+#include "core/image_io.h"
+#include "gpu_env.h"
+#include "image_checks.h"
+#include "run_process.h"
+#include "test_paths.h"
+
+namespace vkp::test {
+namespace {
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Files in `dir` left by an atomic write: ".<name>.tmp-*".
+int temporaryFiles(const fs::path& dir) {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(dir)) n += e.path().filename().string().find(".tmp-") != std::string::npos;
+    return n;
+}
+
+struct CliInterrupt : ::testing::Test {
+    fs::path dir;
+    void SetUp() override {
+        dir = scratchDir("cli_interrupt") / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ProcessResult run(std::vector<std::string> args) {
+        return runProcess(vkpathBinary(), args, dir);
+    }
+    /// The render every test uses: a small Cornell box with glass (book 3), validation on.
+    std::vector<std::string> render(std::vector<std::string> more) const {
+        std::vector<std::string> a = {"render", (scenesDir() / "cornell-book3.json").string(), "--validate", "--width", "40", "--height", "32"};
+        a.insert(a.end(), more.begin(), more.end());
+        return a;
+    }
+    /// Starts a long render with a checkpoint after every batch, waits for the first checkpoint (so
+    /// that samples were taken) and sends `signo`. `twice`: stops the process (SIGSTOP), sends
+    /// SIGINT and SIGTERM, and continues it, so that both arrive before it can finish a batch (two
+    /// signals of one kind would merge into one while pending). Returns the process's result.
+    ProcessResult interrupted(std::vector<std::string> more, int signo, bool twice = false) {
+        more.insert(more.end(), {"--spp", "1000000", "--checkpoint", "ck.exr", "--checkpoint-every", "0.001"});
+        BackgroundProcess p(vkpathBinary(), render(more), dir);
+        EXPECT_TRUE(p.waitFor([&] { return fs::exists(dir / "ck.exr"); }, 120.0)) << p.errSoFar();
+        const auto t0 = std::chrono::steady_clock::now();
+        if (twice) {
+            p.signal(SIGSTOP);
+            p.signal(SIGINT);
+            p.signal(SIGTERM);
+            p.signal(SIGCONT);
+        } else {
+            p.signal(signo);
+        }
+        ProcessResult r = p.wait();
+        std::printf("signal %d to exit: %.3f s\n", signo, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        return r;
+    }
+};
+
+/// K of "stopped at sample K of N" in vkpath's stderr, or 0.
+std::uint32_t stoppedAt(const std::string& err) {
+    std::smatch m;
+    return std::regex_search(err, m, std::regex("stopped at sample ([0-9]+) of")) ? std::uint32_t(std::stoul(m[1])) : 0u;
+}
+
+class CliResume : public CliInterrupt, public ::testing::WithParamInterface<bool> {};
+
+// Interrupted by a real SIGINT at sample K, continued to K + 13 with --resume: the output file is
+// byte for byte the one an uninterrupted render of K + 13 samples writes. The interrupted render's
+// own output holds exactly the K samples (equal pixels to a K-sample render) and says so.
+TEST_P(CliResume, SigintThenResumeIsBitIdentical) {
+    VKP_REQUIRE_DEVICE(dev);
+    const bool adaptive = GetParam();
+    // Adaptive: a threshold no pixel reaches, so the active list and decision sums matter to the end.
+    const std::vector<std::string> mode = adaptive ? std::vector<std::string>{"--adaptive", "0.0001", "--adaptive-min-spp", "8"}
+                                                   : std::vector<std::string>{};
+    std::vector<std::string> args = mode;
+    args.insert(args.end(), {"-o", "stopped.exr", "-o", "stopped.png"});
+    const ProcessResult r = interrupted(args, SIGINT);
+    ASSERT_EQ(r.exitCode, 130) << r.err;
+    const std::uint32_t k = stoppedAt(r.err);
+    ASSERT_GT(k, 0u) << r.err;
+    std::printf("interrupted at sample %u\n", k);
+    EXPECT_EQ(temporaryFiles(dir), 0);
+    const std::string stopped = slurp(dir / "stopped.exr");
+    EXPECT_NE(stopped.find("vkpath.interrupted"), std::string::npos);
+    EXPECT_NE(stopped.find("0:" + std::to_string(k)), std::string::npos) << "the samples reached are in the file's metadata";
+    EXPECT_NE(slurp(dir / "stopped.png").find("tEXtvkpath.spp"), std::string::npos);
+
+    auto with = [&](std::vector<std::string> more) {
+        std::vector<std::string> a = mode;
+        a.insert(a.end(), more.begin(), more.end());
+        a.push_back("--quiet");
+        return render(a);
+    };
+    const std::string total = std::to_string(k + 13);
+    ProcessResult res = run(with({"--resume", "ck.exr", "--spp", total, "-o", "resumed.exr"}));
+    ASSERT_EQ(res.exitCode, 0) << res.err;
+    res = run(with({"--spp", total, "-o", "straight.exr"}));
+    ASSERT_EQ(res.exitCode, 0) << res.err;
+    const std::string resumed = slurp(dir / "resumed.exr"), straight = slurp(dir / "straight.exr");
+    ASSERT_FALSE(straight.empty());
+    EXPECT_TRUE(resumed == straight) << "resumed.exr and straight.exr differ";
+    EXPECT_TRUE(litAndNotConstant(readImage(dir / "straight.exr"), "straight.exr"));
+    res = run(with({"--spp", std::to_string(k), "-o", "k.exr"}));
+    ASSERT_EQ(res.exitCode, 0) << res.err;
+    EXPECT_EQ(readImage(dir / "k.exr").rgb, readImage(dir / "stopped.exr").rgb);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, CliResume, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& i) { return i.param ? "adaptive" : "plain"; });
+
+// Two signals: the second stops at once (128 + its number) and writes nothing: no output, no
+// temporary file; the checkpoint written before stays whole and can be continued.
+TEST_F(CliInterrupt, SecondSignalStopsAtOnceAndWritesNothing) {
+    VKP_REQUIRE_DEVICE(dev);
+    const ProcessResult r = interrupted({"-o", "never.exr"}, SIGTERM, true);
+    EXPECT_TRUE(r.exitCode == 130 || r.exitCode == 143) << r.exitCode << "\n" << r.err;
+    EXPECT_NE(r.err.find("stopped at once"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "never.exr"));
+    EXPECT_EQ(temporaryFiles(dir), 0);
+    const ProcessResult res = run(render({"--resume", "ck.exr", "--spp", "300", "-o", "later.exr", "--quiet"}));
+    EXPECT_EQ(res.exitCode, 0) << res.err;
+}
+
+// A checkpoint continues only the render it came from: the first difference is named, in one line.
+TEST_F(CliInterrupt, ResumeRefusesAnotherRender) {
+    VKP_REQUIRE_DEVICE(dev);
+    ASSERT_EQ(run(render({"--spp", "3", "--checkpoint", "ck.exr", "--quiet", "-o", "a.exr"})).exitCode, 0);
+    ProcessResult r = run(render({"--spp", "6", "--resume", "ck.exr", "--seed", "5", "-o", "b.exr"}));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("ck.exr: cannot resume: seed is 0 in it, 5 here"), std::string::npos) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    r = run(render({"--spp", "6", "--resume", "ck.exr", "--sampler", "bsdf", "-o", "b.exr"}));
+    EXPECT_NE(r.err.find("sampler is mis in it, bsdf here"), std::string::npos) << r.err;
+    r = run(render({"--spp", "2", "--resume", "ck.exr", "-o", "b.exr"}));
+    EXPECT_NE(r.err.find("already holds samples up to 3"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "b.exr"));
+}
+
+// Three sample ranges, merged in a shuffled order, against one render of all their samples: equal
+// within float rounding (the largest relative difference is printed), and the merge does not
+// depend on the order of its inputs.
+TEST_F(CliInterrupt, SampleRangesMergeToTheSingleRender) {
+    VKP_REQUIRE_DEVICE(dev);
+    const char* ranges[] = {"0:5", "5:17", "17:24"};
+    for (int i = 0; i < 3; ++i) {
+        const ProcessResult r = run(render({"--sample-range", ranges[i], "--partial", "p" + std::to_string(i) + ".exr", "--quiet"}));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "cornell-book3.png")) << "a range with --partial and no -o writes no default image";
+    ASSERT_EQ(run(render({"--spp", "24", "-o", "single.exr", "--quiet"})).exitCode, 0);
+    ProcessResult r = run({"merge", "p2.exr", "p0.exr", "p1.exr", "-o", "merged.exr", "-o", "merged.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_EQ(run({"merge", "p1.exr", "p2.exr", "p0.exr", "-o", "again.exr", "--quiet"}).exitCode, 0);
+    EXPECT_EQ(slurp(dir / "merged.exr"), slurp(dir / "again.exr"));
+    const Image merged = readImage(dir / "merged.exr"), single = readImage(dir / "single.exr");
+    ASSERT_TRUE(litAndNotConstant(single, "single.exr"));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < single.rgb.size(); ++i) {
+        const double a = merged.rgb[i], b = single.rgb[i];
+        worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), 1e-6));
+    }
+    std::printf("merged vs single render: largest relative difference %.3g\n", worst);
+    // One sample more or less would change a pixel by about 1/24; float rounding by < 1e-6.
+    EXPECT_LE(worst, 1e-6);
+    // A gap and an overlap are refused with one line.
+    r = run({"merge", "p0.exr", "p2.exr", "-o", "gap.exr"});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("samples [5:17) are in no part"), std::string::npos) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1);
+    r = run({"merge", "p0.exr", "p0.exr", "-o", "overlap.exr"});
+    EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "gap.exr") || fs::exists(dir / "overlap.exr"));
+}
+
+// Checked before rendering (defect 7 of issue 15): a --dump-dir that is a file, exit 1 at once.
+TEST_F(CliInterrupt, DumpDirThatIsAFileIsRefusedUpFront) {
+    VKP_REQUIRE_DEVICE(dev);
+    std::ofstream(dir / "afile") << "x";
+    const ProcessResult r = run(render({"--spp", "2", "--dump-every", "1", "--dump-dir", "afile", "-o", "x.exr"}));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("afile: --dump-dir is not a folder"), std::string::npos) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
+}
+
+}  // namespace
+}  // namespace vkp::test
