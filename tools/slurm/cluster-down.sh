@@ -28,6 +28,9 @@ dir=$(cd "$dir" && pwd)
 [ -f "$dir/slurm.conf" ] || [ -z "$(ls -A "$dir")" ] ||
   die "$dir has no slurm.conf: not a folder of cluster-up.sh, left alone"
 
+# running PID: the process exists and is not a zombie (one that exited, not yet reaped by init).
+running() { [ -r "/proc/$1/stat" ] && [ "$(awk '{ print $3 }' "/proc/$1/stat" 2>/dev/null)" != Z ]; }
+
 # stop NAME PIDFILE: SIGTERM to the daemon of PIDFILE if its command is NAME, SIGKILL after 10 s.
 status=0
 stop() {
@@ -38,7 +41,7 @@ stop() {
   [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] || return 0
   kill -TERM "$pid" 2>/dev/null || return 0
   for _ in $(seq 100); do
-    kill -0 "$pid" 2>/dev/null || return 0
+    running "$pid" || return 0
     sleep 0.1
   done
   echo "cluster-down: $name (pid $pid) ignored SIGTERM for 10 s; SIGKILL" >&2

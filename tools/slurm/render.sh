@@ -77,8 +77,8 @@ if [ -z "$vkpath" ]; then
 fi
 vkpath=$(absolute "$vkpath")
 [ -x "$vkpath" ] || die "$vkpath: not an executable (give --vkpath BIN)"
-"$vkpath" --help 2>/dev/null | grep -q -- --sample-range ||
-  die "$vkpath has no --sample-range: too old for render.sh (give --vkpath BIN)"
+help=$("$vkpath" --help 2>&1 || true)   # whole, not piped: grep -q would leave it SIGPIPE
+grep -q -- --sample-range <<< "$help" || die "$vkpath has no --sample-range: too old for render.sh (give --vkpath BIN)"
 [ -n "$work" ] || work="${outputs[0]}.farm"
 work=$(absolute "$work")
 if [ -e "$work" ] && { [ ! -d "$work" ] || [ -n "$(ls -A "$work")" ]; }; then
