@@ -83,7 +83,9 @@ single_s=$(elapsed "$t")
 cluster=$(mktemp -d "${TMPDIR:-/tmp}/vkpath-farm.XXXXXX")
 echo "$cluster" > "$scratch/cluster-dir"
 t=$(seconds)
-eval "$("$root/tools/slurm/cluster-up.sh" "$cluster")"
+environment=$("$root/tools/slurm/cluster-up.sh" "$cluster") || fail "the cluster did not start"
+eval "$environment"
+[ -n "${SLURM_CONF:-}" ] || fail "cluster-up.sh printed no SLURM_CONF"
 cluster_s=$(elapsed "$t")
 
 # 4 shards through render.sh, merged into an EXR and a PNG.

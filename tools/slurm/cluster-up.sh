@@ -3,8 +3,8 @@
 # tools/deps.sh --farm installs them), for tests and trying tools/slurm/render.sh without a cluster.
 #
 #   tools/slurm/cluster-up.sh [--cpus N] [--port P] [DIR]
-#   eval "$(tools/slurm/cluster-up.sh DIR)"      # sets SLURM_CONF for sbatch, squeue, scontrol
-#   tools/slurm/cluster-down.sh DIR              # stops the daemons, removes DIR
+#   out=$(tools/slurm/cluster-up.sh DIR) && eval "$out"   # sets SLURM_CONF (sbatch, squeue, ...)
+#   tools/slurm/cluster-down.sh DIR                        # stops the daemons, removes DIR
 #
 # Everything lives in DIR (default: a new folder from mktemp -d; it must not exist or be empty):
 # slurm.conf, the controller's state, slurmd's spool, PID files, logs, and a munged of its own
@@ -130,7 +130,14 @@ slurmd -N "$node" || die "slurmd did not start (log: $dir/log/slurmd.log)"
 
 # Wait for the node to be idle; a node left DOWN or DRAINED (a previous state, a slow first
 # registration) is resumed.
-alive() { [ -s "$1" ] && kill -0 "$(tr -dc 0-9 < "$1")" 2>/dev/null; }
+# A daemon is dead once its PID file names a process that is gone or a zombie (no file yet: it is
+# still starting).
+alive() {
+  local pid
+  [ -s "$1" ] || return 0
+  pid=$(tr -dc 0-9 < "$1")
+  [ -r "/proc/$pid/stat" ] && [ "$(awk '{ print $3 }' "/proc/$pid/stat" 2>/dev/null)" != Z ]
+}
 state=
 for _ in $(seq 150); do
   alive "$dir/slurmctld.pid" || die "slurmctld exited (log: $dir/log/slurmctld.log)"
