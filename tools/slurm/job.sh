@@ -5,8 +5,8 @@
 #   job.sh shard VKPATH SCENE SPP SHARDS WORK [vkpath render options...]
 #       element $SLURM_ARRAY_TASK_ID = i of the job array: renders samples
 #       [i*SPP/SHARDS, (i+1)*SPP/SHARDS) into the partial file WORK/shard-i.exr
-#   job.sh merge VKPATH WORK SHARDS OUT...
-#       merges WORK/shard-0.exr ... WORK/shard-(SHARDS-1).exr into every OUT
+#   job.sh merge VKPATH WORK SHARDS EXPOSURE OUT...
+#       merges WORK/shard-0.exr ... WORK/shard-(SHARDS-1).exr into every OUT (PNG: at EXPOSURE)
 #
 # lavapipe renders with LP_NUM_THREADS threads: as many as the CPUs Slurm gave the job.
 set -euo pipefail
@@ -26,15 +26,15 @@ case "$mode" in
     exec "$vkpath" render "$scene" "$@" --sample-range "$a:$b" --partial "$work/shard-$i.exr" --quiet
     ;;
   merge)
-    [ $# -ge 4 ] || die "usage: job.sh merge VKPATH WORK SHARDS OUT..."
-    vkpath=$1 work=$2 shards=$3
-    shift 3
+    [ $# -ge 5 ] || die "usage: job.sh merge VKPATH WORK SHARDS EXPOSURE OUT..."
+    vkpath=$1 work=$2 shards=$3 exposure=$4
+    shift 4
     parts=()
     for ((i = 0; i < shards; i++)); do parts+=("$work/shard-$i.exr"); done
     outputs=()
     for out in "$@"; do outputs+=(-o "$out"); done
     echo "merge of $shards shards on $(hostname) (job ${SLURM_JOB_ID:-?}) into $*"
-    exec "$vkpath" merge "${parts[@]}" "${outputs[@]}"
+    exec "$vkpath" merge "${parts[@]}" "${outputs[@]}" --exposure "$exposure" --quiet
     ;;
   *) die "usage: job.sh shard|merge ... (a job of tools/slurm/render.sh)" ;;
 esac

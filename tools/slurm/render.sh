@@ -18,6 +18,7 @@
 #   --sbatch OPTION     an option for sbatch, for every job, repeatable (e.g. --sbatch
 #                       --partition=render --sbatch --time=1:00:00)
 #   --job-name NAME     the jobs' name (default vkpath)
+#   --exposure EV       exposure in stops of PNG outputs (the merge's --exposure; default 0)
 #   -- ...              everything after -- goes to every shard's `vkpath render` (not -o, --spp,
 #                       --sample-range, --partial: this script sets those)
 #
@@ -30,7 +31,7 @@ root=$(cd "$here/../.." && pwd)
 die() { echo "render: $*" >&2; exit 1; }
 usage_hint="usage: tools/slurm/render.sh SCENE --shards N --spp S -o OUT [options] [-- vkpath options] (--help)"
 
-scene='' shards='' spp='' work='' cpus=1 vkpath='' name=vkpath
+scene='' shards='' spp='' work='' cpus=1 vkpath='' name=vkpath exposure=0
 outputs=() sbatch_options=() extra=()
 need() { [ "$1" -ge 2 ] || die "$2 needs a value ($usage_hint)"; }
 while [ $# -gt 0 ]; do
@@ -43,6 +44,7 @@ while [ $# -gt 0 ]; do
     --vkpath) need $# "$1"; vkpath=$2; shift 2 ;;
     --sbatch) need $# "$1"; sbatch_options+=("$2"); shift 2 ;;
     --job-name) need $# "$1"; name=$2; shift 2 ;;
+    --exposure) need $# "$1"; exposure=$2; shift 2 ;;
     --) shift; extra=("$@"); break ;;
     -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     -*) die "unknown option '$1' (vkpath's options go after --; $usage_hint)" ;;
@@ -56,6 +58,7 @@ is_count "${spp:-x}" || die "--spp must be a positive integer, got '${spp:-}'"
 is_count "${shards:-x}" || die "--shards must be a positive integer, got '${shards:-}'"
 [ "$shards" -le "$spp" ] || die "--shards $shards exceeds --spp $spp (every shard renders at least one sample)"
 is_count "$cpus" || die "--cpus-per-task must be a positive integer, got '$cpus'"
+[[ "$exposure" =~ ^[-+]?[0-9]*\.?[0-9]+$ ]] || die "--exposure must be a number, got '$exposure'"
 [ ${#outputs[@]} -gt 0 ] || die "no output: give -o OUT ($usage_hint)"
 for option in "${extra[@]}"; do
   case "$option" in
@@ -107,7 +110,7 @@ array_id=${array_id%%;*}
 # The merge job, and the wait for it (in the background, so that a signal reaches the trap).
 sbatch --parsable --wait --job-name="$name-merge" --dependency="afterok:$array_id" \
   --kill-on-invalid-dep=yes --cpus-per-task=1 --chdir="$work" --output="$work/merge.log" \
-  "${sbatch_options[@]}" "$here/job.sh" merge "$vkpath" "$work" "$shards" "${outputs[@]}" \
+  "${sbatch_options[@]}" "$here/job.sh" merge "$vkpath" "$work" "$shards" "$exposure" "${outputs[@]}" \
   > "$work/merge.jobid" &
 waiter=$!
 for _ in $(seq 100); do
@@ -127,12 +130,22 @@ if [ ! -e "$work/merge.log" ]; then
   # The merge job never started: a shard failed (afterok was not met) or sbatch failed.
   failed=0
   for ((i = 0; i < shards; i++)); do
-    [ -s "$work/shard-$i.exr" ] && continue
+    # Failed: no partial file, or one of the samples reached when it was stopped (vkpath writes
+    # that on SIGTERM, "stopped at sample"), or Slurm cancelled it.
+    if [ -s "$work/shard-$i.exr" ] &&
+       ! grep -q -E 'CANCELLED|stopped at sample|error' "$work/shard-$i.log" 2>/dev/null; then
+      continue
+    fi
     failed=$((failed + 1))
-    echo "render: shard $i wrote no partial file; the end of $work/shard-$i.log:" >&2
+    echo "render: shard $i failed; the end of $work/shard-$i.log:" >&2
     tail -n 5 "$work/shard-$i.log" 2>/dev/null | sed 's/^/  /' >&2 || echo "  (no log: it never ran)" >&2
   done
-  echo "render: the merge job did not run ($failed of $shards shards failed, sbatch exit $status); partial files and logs kept in $work" >&2
+  if [ "$failed" -eq 0 ]; then
+    echo "render: the merge job never ran although every shard seems to have succeeded (was it cancelled? see $work/shard-*.log)" >&2
+  else
+    echo "render: the merge job did not run: $failed of $shards shards failed" >&2
+  fi
+  echo "render: partial files and logs kept in $work" >&2
   exit 1
 fi
 if [ "$status" -ne 0 ]; then
