@@ -20,7 +20,7 @@
 #   --job-name NAME     the jobs' name (default vkpath)
 #   --exposure EV       exposure in stops of PNG outputs (the merge's --exposure; default 0)
 #   -- ...              everything after -- goes to every shard's `vkpath render` (not -o, --spp,
-#                       --sample-range, --partial: this script sets those)
+#                       --sample-range, --partial: this script sets those; not --time)
 #
 # Exit status: the merge job's; 1 for bad arguments or when a shard failed (the merge job then
 # never runs); 130 when interrupted (the jobs are cancelled). Needs sbatch, and SLURM_CONF or a
@@ -64,6 +64,8 @@ for option in "${extra[@]}"; do
   case "$option" in
     -o|--spp|--sample-range|--sample-range=*|--partial|--partial=*)
       die "'$option' after --: render.sh sets it (use its own -o and --spp)" ;;
+    --time|--time=*)
+      die "'$option' after --: a shard must render its whole range (a timed one writes a short part)" ;;
   esac
 done
 command -v sbatch >/dev/null || die "sbatch not found: this script submits to a Slurm cluster"
