@@ -107,7 +107,7 @@ start=$(date +%s)
 array_id=$(sbatch --parsable --job-name="$name" --array="0-$((shards - 1))" --cpus-per-task="$cpus" \
   --chdir="$work" --output="$work/shard-%a.log" "${sbatch_options[@]}" \
   "$here/job.sh" shard "$vkpath" "$scene" "$spp" "$shards" "$work" "${extra[@]}") ||
-  die "sbatch refused the job array (work folder $work kept)"
+  { rmdir "$work" 2>/dev/null || true; die "sbatch refused the job array"; }
 array_id=${array_id%%;*}
 # The merge job, and the wait for it (in the background, so that a signal reaches the trap).
 sbatch --parsable --wait --job-name="$name-merge" --dependency="afterok:$array_id" \
@@ -121,6 +121,11 @@ for _ in $(seq 100); do
   sleep 0.1
 done
 merge_id=$(cut -d';' -f1 "$work/merge.jobid" 2>/dev/null || true)
+if [ -z "$merge_id" ]; then
+  wait "$waiter" 2>/dev/null || true
+  scancel "$array_id" 2>/dev/null || true
+  die "sbatch refused the merge job; cancelled the job array $array_id (work folder $work kept)"
+fi
 echo "render: $shards shards of $spp spp as job array ${array_id}, merge job ${merge_id:-?}; work folder $work" >&2
 status=0
 wait "$waiter" || status=$?
