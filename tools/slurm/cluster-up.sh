@@ -39,7 +39,14 @@ for tool in munged slurmctld slurmd sbatch scontrol sinfo runuser; do
 done
 id munge >/dev/null 2>&1 || die "no user 'munge': install Slurm with tools/deps.sh --farm"
 
-port_in_use() { ss -Htln "( sport = :$1 )" 2>/dev/null | grep -q .; }
+# A port is in use when something listens on it (ss, from iproute2; without it: a connection).
+port_in_use() {
+  if command -v ss >/dev/null; then
+    ss -Htln "( sport = :$1 )" 2>/dev/null | grep -q .
+  else
+    (exec 3<> "/dev/tcp/127.0.0.1/$1") 2>/dev/null
+  fi
+}
 if [ -z "$port" ]; then
   for _ in $(seq 50); do
     p=$((20000 + (RANDOM * 32768 + RANDOM) % 40000))
