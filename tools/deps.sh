@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
 # With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh) and valgrind
-# (tools/instructions-per-sample.sh); with --reference also Blender (the `reference` tests).
+# (tools/instructions-per-sample.sh); with --reference also Blender (the `reference` tests); with
+# --farm also Slurm and munge (the `farm` test). Options combine.
 # Idempotent: does nothing (and needs no network) when everything is already installed.
 set -euo pipefail
 packages=(
@@ -10,10 +11,17 @@ packages=(
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
   libdraco-dev libmeshoptimizer-dev
 )
-# `tools/deps.sh --bench`: also what the benchmark suite needs (tools/bench.sh), not the tests.
-if [ "${1:-}" = "--bench" ]; then packages+=(python3-numpy python3-matplotlib valgrind); fi
-# `tools/deps.sh --reference`: Blender (Cycles) for the `reference` tests (tools/blender-reference.sh).
-if [ "${1:-}" = "--reference" ]; then packages+=(blender); fi
+for option in "$@"; do
+  case "$option" in
+    # --bench: also what the benchmark suite needs (tools/bench.sh), not the tests.
+    --bench) packages+=(python3-numpy python3-matplotlib valgrind) ;;
+    # --reference: Blender (Cycles) for the `reference` tests (tools/blender-reference.sh).
+    --reference) packages+=(blender) ;;
+    # --farm: Slurm and munge for the `farm` test's one-node cluster (tools/slurm/cluster-up.sh).
+    --farm) packages+=(slurmctld slurmd slurm-client munge) ;;
+    *) echo "deps: unknown option '$option' (--bench, --reference, --farm)" >&2; exit 1 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
