@@ -75,7 +75,8 @@ render options:
   --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
   --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full
-  --device SEL            device index or name substring (default: the most capable)
+  --device SEL            device index or name substring (default: the most capable); render: 'all' or
+                          a list (0,1) splits the samples over several devices and merges them
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
   --gltf-scene N          .gltf/.glb: render scene N of the file (default: the file's default scene)
   --camera N              .gltf/.glb: view through camera N of the file (default: its first perspective camera)

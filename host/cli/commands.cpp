@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/interrupt.h"
+#include "cli/multi_device.h"
 #include "render/accum_file.h"
 #include "render/render_key.h"
 #include "render/error_metrics.h"
@@ -185,6 +186,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
                              std::to_string(job.session.spp) + (a.sampleRange ? " (--sample-range)" : " (--spp)"));
     }
     if (const int sig = interruptSignal()) return stoppedEarly(sig);
+    if (const std::vector<std::string> sel = deviceSelectors(a.device); sel.size() > 1 || sel[0] == "all")
+        return renderOnDevices(a, job, arrays, firstSample, sel, processStart);
     t = Clock::now();
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);

@@ -11,6 +11,42 @@ namespace {
 std::string range(const RenderState& s) { return "[" + std::to_string(s.firstSample) + ":" + std::to_string(s.nextSample) + ")"; }
 }  // namespace
 
+RenderState addStates(const std::vector<const RenderState*>& states, std::uint32_t firstSample, std::uint32_t nextSample) {
+    RenderState m;
+    m.width = states.front()->width;
+    m.height = states.front()->height;
+    m.firstSample = firstSample;
+    m.nextSample = nextSample;
+    const std::size_t floats = std::size_t(m.pixels()) * kStateFloatsPerPixel;
+    m.sum.assign(floats, 0.0f);
+    m.sumSq.assign(floats, 0.0f);
+    std::vector<double> total(floats / 2);
+    for (std::vector<float> RenderState::*array : {&RenderState::sum, &RenderState::sumSq}) {
+        std::fill(total.begin(), total.end(), 0.0);
+        for (const RenderState* s : states) {
+            const std::vector<float>& a = s->*array;
+            for (std::size_t i = 0; i < total.size(); ++i) {
+                const std::size_t px = i / 4, c = i % 4;
+                total[i] += double(a[px * 8 + c]) + double(a[px * 8 + 4 + c]);
+            }
+        }
+        std::vector<float>& dst = m.*array;
+        for (std::size_t i = 0; i < total.size(); ++i) {
+            const std::size_t px = i / 4, c = i % 4;
+            const float hi = float(total[i]);
+            dst[px * 8 + c] = hi;
+            dst[px * 8 + 4 + c] = float(total[i] - double(hi));
+        }
+    }
+    for (const RenderState* s : states) {
+        m.samplesTaken += s->samplesTaken;
+        m.counters.rays += s->counters.rays;
+        m.counters.nonfinite += s->counters.nonfinite;
+        m.counters.loopGuard += s->counters.loopGuard;
+    }
+    return m;
+}
+
 AccumFile mergeParts(const std::vector<AccumFile>& parts, const std::vector<std::string>& names) {
     if (parts.empty()) throw InputError("merge: no parts");
     const AccumFile& p0 = parts[0];
@@ -43,39 +79,9 @@ AccumFile mergeParts(const std::vector<AccumFile>& parts, const std::vector<std:
     }
     AccumFile out;
     out.key = p0.key;
-    RenderState& m = out.state;
-    m.width = p0.state.width;
-    m.height = p0.state.height;
-    m.firstSample = parts[order.front()].state.firstSample;
-    m.nextSample = parts[order.back()].state.nextSample;
-    const std::size_t floats = std::size_t(m.pixels()) * kStateFloatsPerPixel;
-    m.sum.assign(floats, 0.0f);
-    m.sumSq.assign(floats, 0.0f);
-    std::vector<double> total(floats / 2);
-    for (std::vector<float> RenderState::*array : {&RenderState::sum, &RenderState::sumSq}) {
-        std::fill(total.begin(), total.end(), 0.0);
-        for (std::size_t k : order) {
-            const std::vector<float>& a = parts[k].state.*array;
-            for (std::size_t i = 0; i < total.size(); ++i) {
-                const std::size_t px = i / 4, c = i % 4;
-                total[i] += double(a[px * 8 + c]) + double(a[px * 8 + 4 + c]);
-            }
-        }
-        std::vector<float>& dst = m.*array;
-        for (std::size_t i = 0; i < total.size(); ++i) {
-            const std::size_t px = i / 4, c = i % 4;
-            const float hi = float(total[i]);
-            dst[px * 8 + c] = hi;
-            dst[px * 8 + 4 + c] = float(total[i] - double(hi));
-        }
-    }
-    for (std::size_t k : order) {
-        const RenderState& s = parts[k].state;
-        m.samplesTaken += s.samplesTaken;
-        m.counters.rays += s.counters.rays;
-        m.counters.nonfinite += s.counters.nonfinite;
-        m.counters.loopGuard += s.counters.loopGuard;
-    }
+    std::vector<const RenderState*> states;
+    for (std::size_t k : order) states.push_back(&parts[k].state);
+    out.state = addStates(states, parts[order.front()].state.firstSample, parts[order.back()].state.nextSample);
     return out;
 }
 

@@ -14,6 +14,12 @@ namespace vkp {
 /// order of the ranges, whatever the order of `parts`, and stored as a compensated (hi, lo) float
 /// pair; the counters and samplesTaken are added. Throws InputError with one line naming the
 /// part(s) and what is wrong, e.g. "b.exr: samples [32:96) overlap a.exr's [0:64)".
+/// The per-pixel sums of `states` (equal sizes, no adaptive sampling) added in double in the
+/// given order and stored as compensated (hi, lo) float pairs; counters and samplesTaken added.
+/// The result's sample range is [firstSample, nextSample) as given: the caller knows what union
+/// the states hold.
+RenderState addStates(const std::vector<const RenderState*>& states, std::uint32_t firstSample, std::uint32_t nextSample);
+
 AccumFile mergeParts(const std::vector<AccumFile>& parts, const std::vector<std::string>& names);
 
 }  // namespace vkp

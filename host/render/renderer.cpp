@@ -262,6 +262,11 @@ void Renderer::startAt(std::uint32_t first) {
     first_ = done_ = first;
 }
 
+void Renderer::jumpTo(std::uint32_t next) {
+    if (adaptive()) throw std::logic_error("Renderer::jumpTo with adaptive sampling");
+    done_ = next;
+}
+
 namespace {
 /// Reads one per-pixel binding of every band into `out` (kStateFloatsPerPixel floats per pixel).
 template <class Bands>

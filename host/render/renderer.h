@@ -64,6 +64,11 @@ public:
     /// Throws std::logic_error after samples were added or with adaptive sampling (whose decisions
     /// need every earlier sample).
     void startAt(std::uint32_t first);
+    /// Several devices sharing a render (cli/multi_device.cpp): the next addSamples takes samples
+    /// from index `next` on, wherever the last one ended. The sums then hold a set of sample
+    /// chunks that only the caller knows (firstSample()/samplesDone() no longer describe it).
+    /// Throws std::logic_error with adaptive sampling.
+    void jumpTo(std::uint32_t next);
     /// Everything that decides the next images (sums, counts, adaptive state, counters), read back.
     RenderState state();
     /// Continues from `state` (read from a checkpoint of a render with the same key): the next

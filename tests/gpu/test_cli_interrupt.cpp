@@ -190,6 +190,31 @@ TEST_F(CliInterrupt, SampleRangesMergeToTheSingleRender) {
     EXPECT_FALSE(fs::exists(dir / "gap.exr") || fs::exists(dir / "overlap.exr"));
 }
 
+// Several devices in one process (`--device 0,0` opens lavapipe twice): the samples are split in
+// rounds and merged; the image equals one device's render within float rounding (printed).
+TEST_F(CliInterrupt, TwoDevicesEqualOneDevice) {
+    VKP_REQUIRE_DEVICE(dev);
+    ProcessResult r = run(render({"--spp", "30", "--device", "0,0", "-o", "two.exr", "--partial", "two-part.exr"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("on 2 devices"), std::string::npos) << r.err;
+    ASSERT_EQ(run(render({"--spp", "30", "-o", "one.exr", "--quiet"})).exitCode, 0);
+    const Image two = readImage(dir / "two.exr"), one = readImage(dir / "one.exr");
+    ASSERT_TRUE(litAndNotConstant(one, "one.exr"));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < one.rgb.size(); ++i)
+        worst = std::max(worst, std::abs(double(two.rgb[i]) - one.rgb[i]) / std::max(std::abs(double(one.rgb[i])), 1e-6));
+    std::printf("two devices vs one: largest relative difference %.3g\n", worst);
+    EXPECT_LE(worst, 1e-6);
+    // Its partial is that of samples [0:30), and merges with a later range of one device.
+    ASSERT_EQ(run(render({"--sample-range", "30:40", "--partial", "later.exr", "--quiet"})).exitCode, 0);
+    ASSERT_EQ(run({"merge", "two-part.exr", "later.exr", "-o", "forty.exr", "--quiet"}).exitCode, 0);
+    // Options that need one device are refused up front.
+    r = run(render({"--spp", "4", "--device", "0,0", "--adaptive", "0.1", "-o", "no.exr"}));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("--adaptive works on one device"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "no.exr"));
+}
+
 // Checked before rendering (defect 7 of issue 15): a --dump-dir that is a file, exit 1 at once.
 TEST_F(CliInterrupt, DumpDirThatIsAFileIsRefusedUpFront) {
     VKP_REQUIRE_DEVICE(dev);
