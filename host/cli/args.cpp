@@ -35,8 +35,8 @@ glm::vec3 parseColour(const std::string& flag, const std::string& v) {
         const std::string part = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         double x = 0;
         auto [p, ec] = std::from_chars(part.data(), part.data() + part.size(), x);
-        if (part.empty() || ec != std::errc() || p != part.data() + part.size() || !std::isfinite(x) || x < 0 || x > 1e30)
-            usage(flag + " wants R,G,B (or one value for grey): linear radiance, each finite and >= 0, got '" + v + "'");
+        if (part.empty() || ec != std::errc() || p != part.data() + part.size() || !std::isfinite(x) || x < 0 || x > 4e15)
+            usage(flag + " wants R,G,B (or one value for grey): linear radiance, each in [0, 4e15], got '" + v + "'");
         c.push_back(float(x));
         if (comma == std::string::npos) break;
         start = comma + 1;

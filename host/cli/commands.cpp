@@ -231,6 +231,9 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         std::fprintf(stderr, "vkpath: adaptive sampling: %.1f samples per pixel on average, %u of %llu pixels still active\n",
                      double(r.samplesTaken) / double(std::max<std::uint64_t>(r.pixels, 1)), r.activePixels,
                      static_cast<unsigned long long>(r.pixels));
+    if (r.nonfinitePixels)
+        std::fprintf(stderr, "vkpath: warning: %llu pixels of the image are not finite (NaN or Inf)\n",
+                     static_cast<unsigned long long>(r.nonfinitePixels));
     if (r.counters.loopGuard)
         std::fprintf(stderr, "vkpath: warning: %llu paths were cut short by the loop guard\n",
                      static_cast<unsigned long long>(r.counters.loopGuard));

@@ -96,6 +96,7 @@ RunStats runStats(const RenderJob& job, const std::string& variant, const Sessio
     st.rays = r.counters.rays;
     st.firstBatchRays = r.firstBatchRays;
     st.nonfinite = r.counters.nonfinite;
+    st.nonfinitePixels = r.nonfinitePixels;
     st.loopGuard = r.counters.loopGuard;
     st.secondsFirstBatch = r.firstBatchSeconds;
     st.secondsRender = r.renderSeconds;
@@ -144,6 +145,7 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("rays", num(s.rays));
     w.raw("rays_first_batch", num(s.firstBatchRays));
     w.raw("nonfinite_samples", num(s.nonfinite));
+    w.raw("nonfinite_pixels", num(s.nonfinitePixels));
     w.raw("loop_guard_paths", num(s.loopGuard));
     w.raw("seconds_total", num(s.secondsTotal));
     w.raw("seconds_scene_load", num(s.secondsSceneLoad));

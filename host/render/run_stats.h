@@ -33,6 +33,7 @@ struct RunStats {
     std::uint64_t rays = 0;         ///< rays traced (counted on the device)
     std::uint64_t firstBatchRays = 0;
     std::uint64_t nonfinite = 0, loopGuard = 0;
+    std::uint64_t nonfinitePixels = 0;  ///< pixels of the final image that are NaN or Inf
     // Wall times in seconds.
     double secondsTotal = 0.0;        ///< process start to the end of the last output
     double secondsSceneLoad = 0.0;    ///< reading and validating the scene file

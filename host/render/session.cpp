@@ -179,6 +179,8 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     progress.finish();
     res.signal = interruptSignal();
     const Image img = checkpoint(renderer.samplesDone());
+    for (std::size_t i = 0; i < img.pixelCount(); ++i)
+        res.nonfinitePixels += !(std::isfinite(img.rgb[3 * i]) && std::isfinite(img.rgb[3 * i + 1]) && std::isfinite(img.rgb[3 * i + 2]));
     const auto t1 = Clock::now();
     if (o.dumpEvery && !res.signal) writeDumps(img, o, renderer.samplesDone());
     // The outputs, the partial and the checkpoint: all or none.

@@ -63,6 +63,7 @@ struct SessionResult {
     std::uint64_t samplesTaken = 0;  ///< over all pixels (Renderer::samplesTaken)
     std::uint32_t activePixels = 0;  ///< still active at the end (all unless adaptive sampling is on)
     std::uint32_t firstSample = 0;   ///< the render held samples [firstSample, spp) at the end
+    std::uint64_t nonfinitePixels = 0;  ///< pixels of the final image that are NaN or Inf (0 unless something is wrong)
     int signal = 0;                  ///< SIGINT or SIGTERM that ended the render early (core/interrupt.h), else 0
     std::uint32_t stateWrites = 0;   ///< checkpoint files written (periodic ones and the final one)
 };

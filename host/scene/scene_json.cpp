@@ -8,8 +8,16 @@
 #include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_json_parts.h"
+#include "shared/gpu_types.h"
 
 namespace vkp {
+
+namespace {
+/// Emitted radiance the kernel's sums can hold (shared/gpu_types.h MAX_SAMPLE_RADIANCE): a larger
+/// value would only give samples the kernel drops (issue 15, defect 5).
+const json::Range kRadianceRange = json::Range::closed(0.0, 4e15);  // 4e15 = MAX_SAMPLE_RADIANCE, written as a double for messages
+
+}  // namespace
 
 namespace scenejson {
 
@@ -56,7 +64,7 @@ RenderSettings readRender(const json::Value& v) {
     r.spp = o.uint32("spp", 1, kMaxSpp, 64);
     r.maxDepth = o.uint32("max_depth", 1, kMaxDepth, 50);
     r.rouletteDepth = o.uint32("roulette_depth", 1, kMaxDepth, 3);
-    r.background = o.vec3("background", Range::atLeast(0.0), glm::vec3(0.0f));
+    r.background = o.vec3("background", kRadianceRange, glm::vec3(0.0f));
     r.seed = o.uint32("seed", 0, std::numeric_limits<std::uint32_t>::max(), 0);
     o.finish();
     return r;
@@ -66,7 +74,6 @@ namespace {
 
 Material readMaterial(const std::string& name, const json::Value& v) {
     const Range unit = Range::closed(0.0, 1.0);
-    const Range nonNegative = Range::atLeast(0.0);
     json::Object o = v.object();
     Material m;
     m.name = name;
@@ -74,7 +81,7 @@ Material readMaterial(const std::string& name, const json::Value& v) {
     if (type == "lambertian") {
         m.type = MaterialType::Lambertian;
         m.albedo = o.vec3("albedo", unit);
-        m.emit = o.vec3("emit", nonNegative, glm::vec3(0.0f));
+        m.emit = o.vec3("emit", kRadianceRange, glm::vec3(0.0f));
         m.twoSided = m.emits();  // an emitting lambertian surface emits from both faces
     } else if (type == "metal") {
         m.type = MaterialType::Metal;
@@ -87,7 +94,7 @@ Material readMaterial(const std::string& name, const json::Value& v) {
         m.fresnelExact = o.choice("fresnel", {"schlick", "exact"}, "schlick") == "exact";
     } else {
         m.type = MaterialType::DiffuseLight;
-        m.emit = o.vec3("emit", nonNegative);
+        m.emit = o.vec3("emit", kRadianceRange);
         m.twoSided = o.boolean("two_sided", false);
     }
     o.finish();

@@ -144,7 +144,11 @@ struct GpuPush {
 // pair (shaders/lib/bindings.glsl). Decision stream of adaptive sampling (SSBO): per pixel, RGB sum
 // and count, then RGB sum of squares, of the samples that only steer (host/render/adaptive.h).
 // Counters (SSBO): see COUNTER_* indices.
-const uint COUNTER_NONFINITE = 0u;   // samples dropped because they were NaN or Inf
+const uint COUNTER_NONFINITE = 0u;   // samples dropped: NaN, Inf or above MAX_SAMPLE_RADIANCE
+// The largest sample a pixel's sums take: 2^24 samples of it still have a finite sum of squares
+// (2^24 * (4e15)^2 = 2.7e38 < FLT_MAX = 3.4e38). Larger samples (an emitter or background of 1e38,
+// say) are dropped and counted as non-finite, so that no pixel's sums overflow (issue 15, defect 5).
+const float MAX_SAMPLE_RADIANCE = 4.0e15f;
 const uint COUNTER_RAYS_LO = 1u;     // rays traced (64-bit, low word)
 const uint COUNTER_RAYS_HI = 2u;     // rays traced (high word)
 const uint COUNTER_LOOP_GUARD = 3u;  // paths cut short by the loop-pass guard (must stay 0)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -162,6 +163,35 @@ TEST_F(CliRender, DevicesAndBadDeviceSelection) {
     EXPECT_FALSE(std::filesystem::exists(dir / "never.png"));
     r = run({"render", scene("cornell-book3.json"), "--device", "no-such-gpu-name", "-o", "never.png"});
     EXPECT_EQ(r.exitCode, 2) << r.err;
+}
+
+
+// Issue 15, defect 5: samples whose sums (of squares) could overflow float are dropped and counted,
+// never added: a point light of 1e16 W sr^-1 a millimetre above a floor gives the floor below it
+// samples of about 1e21 (their squares are infinite in float). The image stays finite, below
+// MAX_SAMPLE_RADIANCE, and the summary counts the dropped samples.
+TEST_F(CliRender, OverflowingSamplesAreDroppedAndCounted) {
+    VKP_REQUIRE_DEVICE(dev);
+    std::ofstream(dir / "hot.json") << R"({
+      "camera": {"lookfrom": [0, 1, 0], "lookat": [0, 0, 0], "vup": [0, 0, -1], "vfov": 60, "width": 16, "height": 16},
+      "render": {"spp": 4, "max_depth": 4},
+      "materials": {"floor": {"type": "lambertian", "albedo": [0.8, 0.8, 0.8]}},
+      "objects": [
+        {"type": "quad", "Q": [-1, 0, 1], "u": [2, 0, 0], "v": [0, 0, -2], "material": "floor"},
+        {"type": "point_light", "position": [0, 0.001, 0], "intensity": [1e16, 1e16, 1e16]}
+      ]})";
+    const ProcessResult r = run({"render", "hot.json", "--validate", "-o", "hot.pfm"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image img = readImage(dir / "hot.pfm");
+    float worst = 0.0f;
+    for (float x : img.rgb) {
+        ASSERT_TRUE(std::isfinite(x));
+        worst = std::max(worst, x);
+    }
+    EXPECT_LE(worst, 4e15f);
+    EXPECT_GT(worst, 0.0f);  // the rest of the floor is lit
+    EXPECT_EQ(r.err.find(" 0 non-finite samples dropped"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("pixels of the image are not finite"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -129,7 +129,9 @@ std::vector<Case> cases() {
         {"roulette_depth_zero", withRender(R"({"roulette_depth":0})"), "/render/roulette_depth", "(got 0)"},
         {"seed_negative", withRender(R"({"seed":-1})"), "/render/seed", "must be an integer in [0, 4294967295] (got -1)"},
         {"seed_too_big", withRender(R"({"seed":4294967296})"), "/render/seed", "(got 4294967296)"},
-        {"background_negative", withRender(R"({"background":[0,0,-0.5]})"), "/render/background/2", "must be >= 0 (got -0.5)"},
+        {"background_negative", withRender(R"({"background":[0,0,-0.5]})"), "/render/background/2", "must be in [0, 4e+15] (got -0.5)"},
+        // Issue 15, defect 5: radiance whose sums would overflow gave NaN pixels and "0 non-finite samples".
+        {"background_overflows", withRender(R"({"background":[1,3e38,1]})"), "/render/background/1", "must be in [0, 4e+15] (got 3e+38)"},
         {"render_unknown_key", withRender(R"({"samples":4})"), "/render/samples", "unknown key"},
         // materials
         {"materials_type", withMaterials("[]"), "/materials", "must be an object (got array"},
@@ -140,7 +142,9 @@ std::vector<Case> cases() {
          "must be in [0, 1] (got 1.5)"},
         {"albedo_missing", withMaterials(R"({"m":{"type":"metal"}})"), "/materials/m/albedo", "missing required key"},
         {"emit_negative", withMaterials(R"({"m":{"type":"lambertian","albedo":[1,1,1],"emit":[0,-1,0]}})"),
-         "/materials/m/emit/1", "must be >= 0 (got -1)"},
+         "/materials/m/emit/1", "must be in [0, 4e+15] (got -1)"},
+        {"emit_overflows", withMaterials(R"({"m":{"type":"diffuse_light","emit":[3e38,3e38,3e38]}})"), "/materials/m/emit/0",
+         "must be in [0, 4e+15] (got 3e+38)"},
         {"light_emit_missing", withMaterials(R"({"m":{"type":"diffuse_light"}})"), "/materials/m/emit", "missing required key"},
         {"fuzz_range", withMaterials(R"({"m":{"type":"metal","albedo":[1,1,1],"fuzz":1.5}})"), "/materials/m/fuzz",
          "must be in [0, 1] (got 1.5)"},
