@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -124,6 +125,7 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
         impl_->shared.push_back(std::move(buffer));
     }
     if (adaptive()) activeMask_.assign(std::size_t(width_) * height_, 1);
+    if (const char* inject = std::getenv("VKPATH_INJECT_DEVICE_LOST")) injectDeviceLostAt_ = std::uint32_t(std::strtoul(inject, nullptr, 10));
     for (const Band& band : planBands(arrays, lim)) {
         Impl::BandBuffers bb;
         bb.band = band;
@@ -193,6 +195,7 @@ void Renderer::submitSamples(std::uint32_t count) {
     const std::uint32_t perGroup = features_.workgroupX * features_.workgroupY;
     const std::uint32_t groupsX = (width_ + features_.workgroupX - 1) / features_.workgroupX;
     try {
+        if (++submissions_ == injectDeviceLostAt_) throw vk::DeviceLostError("vkQueueSubmit (injected by VKPATH_INJECT_DEVICE_LOST)");
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
             cmd.fillBuffer(impl_->counters().buffer(), gpu::COUNTER_MAX_PASSES * 4, 4, 0);
             vk::MemoryBarrier mb{};

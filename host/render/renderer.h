@@ -117,6 +117,9 @@ private:
     std::uint32_t adaptiveMinSpp_ = 0;
     std::vector<std::uint8_t> activeMask_;
     void submitSamples(std::uint32_t count);
+    /// Fault injection for tests (docs/farm.md "Faults"): with VKPATH_INJECT_DEVICE_LOST=N in the
+    /// environment, the Nth submission of samples fails as a lost device makes it fail.
+    std::uint32_t injectDeviceLostAt_ = 0, submissions_ = 0;
     void updateAdaptive();
 };
 

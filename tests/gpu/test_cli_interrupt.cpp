@@ -215,6 +215,25 @@ TEST_F(CliInterrupt, TwoDevicesEqualOneDevice) {
     EXPECT_FALSE(fs::exists(dir / "no.exr"));
 }
 
+// A lost device (injected at the second submission, VKPATH_INJECT_DEVICE_LOST; the first is one sample) ends the render with
+// one line and exit 3, writes no output, and keeps the last checkpoint, which continues to the
+// image of an uninterrupted render.
+TEST_F(CliInterrupt, DeviceLostKeepsTheLastCheckpoint) {
+    VKP_REQUIRE_DEVICE(dev);
+    ProcessResult r = runProcess(vkpathBinary(), render({"--spp", "40", "--checkpoint", "ck.exr", "--checkpoint-every", "0.001", "-o",
+                                                         "lost.exr", "--quiet"}),
+                                 dir, "VKPATH_INJECT_DEVICE_LOST=2");
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("ErrorDeviceLost"), std::string::npos) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "lost.exr"));
+    EXPECT_EQ(temporaryFiles(dir), 0);
+    ASSERT_TRUE(fs::exists(dir / "ck.exr"));
+    ASSERT_EQ(run(render({"--spp", "40", "--resume", "ck.exr", "-o", "resumed.exr", "--quiet"})).exitCode, 0);
+    ASSERT_EQ(run(render({"--spp", "40", "-o", "straight.exr", "--quiet"})).exitCode, 0);
+    EXPECT_TRUE(slurp(dir / "resumed.exr") == slurp(dir / "straight.exr"));
+}
+
 // Checked before rendering (defect 7 of issue 15): a --dump-dir that is a file, exit 1 at once.
 TEST_F(CliInterrupt, DumpDirThatIsAFileIsRefusedUpFront) {
     VKP_REQUIRE_DEVICE(dev);
