@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "pathtrace.spv.h"
+
 namespace vkp {
 
 namespace {
@@ -40,6 +42,11 @@ RenderKey renderKey(const GpuArrays& arrays, const RenderOptions& options) {
     add("solid-angle min", number(options.solidAngleMinSize));
     add("adaptive", options.adaptive() ? number(options.adaptiveThreshold) + " from " + std::to_string(options.adaptiveMinSpp) + " spp" : "off");
     add("variant", options.fullVariant ? "full" : "auto");
+    Fnv1a kernel;  // the kernel's code: a build with other shaders takes other samples
+    kernel.add(std::as_bytes(std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]))));
+    char kernelHex[24];
+    std::snprintf(kernelHex, sizeof kernelHex, "%016llx", static_cast<unsigned long long>(kernel.h));
+    add("kernel", kernelHex);
     Fnv1a h;
     gpu::GpuFrame frame = arrays.frame;
     frame.tiles = glm::uvec4(0);  // workgroups per row: the workgroup size, a speed option

@@ -14,7 +14,8 @@ namespace vkp {
 struct RenderKey {
     /// (name, value) in a fixed order: "vkpath" (version), "size", "seed", "max depth", "rr depth",
     /// "sampler", "sequence", "light pick", "light sampling", "solid-angle min", "adaptive",
-    /// "variant", then "scene" last: a 64-bit FNV-1a hash (hex) of every array uploaded to the
+    /// "variant", "kernel" (a 64-bit FNV-1a hash of the kernel's SPIR-V: builds of one version
+    /// with other shaders differ), then "scene" last: a 64-bit FNV-1a hash (hex) of every array uploaded to the
     /// device (BVH, primitives, materials, lights, textures, environment, camera), which covers
     /// the scene file and everything it includes. Speed options (workgroup, tile order, samples per
     /// dispatch) and the outputs are not in it: they do not change a sample.
