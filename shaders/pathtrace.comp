@@ -50,6 +50,9 @@ struct PathState {
     vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it)
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
+    vec3 sigma;          // HAS_ABSORPTION: absorption coefficient of the dielectric the ray travels
+                         // inside (1/world unit; 0 outside): set when a ray refracts in, cleared
+                         // when it refracts out (closed, non-nested glass)
 };
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
@@ -77,6 +80,7 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     s.prevX = s.o;
     s.prevN = vec3(0.0f, 0.0f, 1.0f);
     s.prevBsdfPdf = 0.0f;
+    s.sigma = vec3(0.0f);
     return s;
 }
 
@@ -88,9 +92,14 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
     SurfaceHit h;
     if (!findSurface(s.o, s.d, h, passes)) {
-        s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
+        // Inside absorbing glass an escaping ray travels forever: nothing is left of it.
+        if (!(HAS_ABSORPTION && any(greaterThan(s.sigma, vec3(0.0f)))))
+            s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
         return true;
     }
+    // Beer-Lambert along the segment inside absorbing glass ("Ray Tracing: The Next Week" sec. 9's
+    // constant density, absorbing only): the fraction exp(-sigma t) of the light is left.
+    if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * distance(s.o, h.x));
     // The light this ray found, weighted against the light sample that could have found it from
     // the previous vertex.
     if (HAS_EMITTERS && s.countEmission)
@@ -106,7 +115,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     vec3 xo = spawnFrom(h, h.ns);
     bool nee = !bsdfIsDelta(b) && neeOn();
     if (nee || (punctualOn() && !bsdfIsDelta(b)))  // punctual lights: next-event estimation under every sampler
-        s.radiance += directLight(b, s.throughput, h.x, xo, h.prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
+        s.radiance += directLight(b, s.throughput, s.sigma, h.x, xo, h.prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
     vec3 dir;
     if (mixtureOn(b)) {
         if (!sampleMixture(b, xo, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
@@ -123,8 +132,10 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
             s.prevBsdfPdf = pdf;
         }
     }
-    // A refracted ray leaves on the other side.
-    s.o = (HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f)) ? spawnFrom(h, -h.ns) : xo;
+    // A refracted ray leaves on the other side: into the glass through its front, out through its back.
+    bool refracted = HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f);
+    s.o = refracted ? spawnFrom(h, -h.ns) : xo;
+    if (HAS_ABSORPTION && refracted) s.sigma = h.frontFace ? vec3(h.m.m2.x, h.m.m2.y, h.m.m2.z) : vec3(0.0f);
     s.d = dir;
 
     // Russian roulette (unbiased): continue with probability q, divide by q.

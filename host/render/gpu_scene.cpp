@@ -82,6 +82,7 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
         gpu::GpuMaterial g{};
         g.m0 = v4(m.albedo, bitsf(flags));
         g.m1 = v4(m.emit, param);
+        if (m.type == MaterialType::Dielectric) g.m2 = v4(m.absorption, 0.0f);  // Beer-Lambert inside
         if (m.type == MaterialType::Pbr) {
             g.m0 = v4(glm::vec3(m.pbr.baseColor), bitsf(flags));
             g.m2 = v4(m.pbr.specularColor, m.pbr.specular);

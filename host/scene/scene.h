@@ -94,6 +94,9 @@ struct Material {
     float fuzz = 0.0f;       ///< metal: radius of the fuzz sphere, in [0,1]
     float ior = 1.5f;        ///< dielectric: index of refraction (relative to the outside)
     bool fresnelExact = false;  ///< dielectric: exact Fresnel equations instead of Schlick
+    /// dielectric: Beer-Lambert absorption coefficient inside it, per channel (1/world unit; 0 =
+    /// clear): light travelling a distance t inside keeps exp(-absorption t) of itself.
+    glm::vec3 absorption{0.0f};
     bool twoSided = false;      ///< both faces emit: diffuse_light's "two_sided"; the loader sets it
                                 ///< for every emitting lambertian (which always emits from both faces);
                                 ///< Pbr: glTF doubleSided (a single-sided emitter emits from its front only)

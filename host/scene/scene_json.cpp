@@ -92,6 +92,7 @@ Material readMaterial(const std::string& name, const json::Value& v) {
         m.albedo = glm::vec3(1.0f);  // clear glass: the book's attenuation of 1
         m.ior = o.number("ior", Range::above(0.0));
         m.fresnelExact = o.choice("fresnel", {"schlick", "exact"}, "schlick") == "exact";
+        m.absorption = o.vec3("absorption", Range::closed(0.0, 1e30), glm::vec3(0.0f));
     } else {
         m.type = MaterialType::DiffuseLight;
         m.emit = o.vec3("emit", kRadianceRange);

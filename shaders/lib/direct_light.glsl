@@ -38,8 +38,9 @@ bool neeWeighted(Bsdf b) { return SAMPLER == SAMPLER_MIS || bsdfIsGlossy(b); }
 /// One light sample's contribution beta f cos Le w / p (a punctual light: beta f cos E / pick) at the non-delta vertex x (BSDF b, offset
 /// origin xo, on primitive prim / p), with uStrategy in [0,1) choosing the light (the vertex's
 /// strategy number) and uLight in [0,1)^2 the point on it; 0 when the sample is occluded, finds no
-/// light or leaves below the surface. Counts the shadow ray in rays.
-vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float uStrategy, vec2 uLight,
+/// light or leaves below the surface. Counts the shadow ray in rays. sigma: the absorption coefficient
+/// of the glass the vertex lies in (HAS_ABSORPTION; 0 outside): the shadow ray's length attenuates.
+vec3 directLight(Bsdf b, vec3 beta, vec3 sigma, vec3 x, vec3 xo, uint prim, GpuPrim p, float uStrategy, vec2 uLight,
                  inout uint rays, inout uint passes) {
     float pEnv = envPickProb();
     LightRay r;
@@ -64,6 +65,7 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 x, vec3 xo, uint prim, GpuPrim p, float
     float pl = r.pdf * pick;
     float w = (neeWeighted(b) && !r.delta) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
     vec3 contribution = evalBsdf(b, beta, r.dir) * r.le * (w / pl);
+    if (HAS_ABSORPTION && any(greaterThan(sigma, vec3(0.0f)))) contribution *= exp(-sigma * r.shadowLength);
     rays++;
     if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);
     return contribution;

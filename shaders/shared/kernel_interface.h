@@ -56,6 +56,7 @@
 #define VKP_SPEC_LAYERS 18                 // uint: LAYER_* over some MAT_PBR material (shared/layers.h)
 #define VKP_SPEC_WORKGROUP_X 19            // uint: local_size_x (`--workgroup`)
 #define VKP_SPEC_WORKGROUP_Y 20            // uint: local_size_y
-#define VKP_SPEC_COUNT 21
+#define VKP_SPEC_HAS_ABSORPTION 21         // bool: some dielectric absorbs inside (Beer-Lambert)
+#define VKP_SPEC_COUNT 22
 
 #endif
