@@ -82,6 +82,7 @@ void becomeTransmitted(inout GpuMaterial m) {
     if (ior >= 1.0f) {
         m.m0 = vec4(1.0f, 1.0f, 1.0f, uintBitsToFloat(MAT_DIELECTRIC | MATF_FRESNEL_EXACT));
         m.m1.w = ior;
+        m.m2 = vec4(0.0f);  // a dielectric's absorption (HAS_ABSORPTION): none, not the specular colour
     } else {
         m.m0.w = uintBitsToFloat(MAT_METAL);
         m.m1.w = m.m3.y * m.m3.y;
