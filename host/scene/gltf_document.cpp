@@ -311,6 +311,7 @@ bool extensionImplemented(const std::string& name) {
         "KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_transmission",
         "KHR_materials_ior", "KHR_texture_transform", "KHR_mesh_quantization", "KHR_lights_punctual", "KHR_materials_unlit",
         "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_materials_clearcoat", "KHR_materials_sheen",
+        "KHR_materials_volume",
     };
     return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
 }

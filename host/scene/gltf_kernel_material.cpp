@@ -55,6 +55,7 @@ Material transmittedMaterial(const Material& m) {
         k.albedo = glm::vec3(1.0f);
         k.ior = m.ior;
         k.fresnelExact = true;
+        k.absorption = m.pbr.volumeAbsorption;  // KHR_materials_volume
     } else {
         // KHR_materials_ior 0 (no refraction defined): the book's fuzzy metal, F0 = base colour,
         // fuzz = GGX alpha = roughness^2.

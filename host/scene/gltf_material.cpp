@@ -261,6 +261,21 @@ Material MaterialMapper::convert(int m) {
         p.transmission = float(number(t, "transmissionFactor", 0.0, 0.0, 1.0, f, tp));
         p.transmissionTexture = extensionTexture(t, "transmissionTexture", false, tp);
     }
+    if (const Value* v = extension(g.extensions, "KHR_materials_volume", f, place)) {
+        // A volume behind the surface (thicknessFactor > 0; 0 means thin-walled): absorption
+        // -ln(attenuationColor) / attenuationDistance. The thickness itself is a rasteriser's
+        // stand-in for the distance a path tracer measures (docs/gltf.md).
+        const std::string vp = ext + "KHR_materials_volume";
+        const double thickness = number(v, "thicknessFactor", 0.0, 0.0, kInf, f, vp);
+        const glm::vec3 colour = factor<3>(numbers(v, "attenuationColor", {1.0, 1.0, 1.0}, f, vp), 0.0, 1.0, f, vp + "/attenuationColor");
+        const double distance = number(v, "attenuationDistance", kInf, 0.0, kInf, f, vp);
+        if (!(distance > 0.0)) fail(f, vp + "/attenuationDistance", "must be > 0 (got " + fmt(float(distance)) + ")");
+        if (thickness > 0.0 && std::isfinite(distance))
+            for (int c = 0; c < 3; ++c)
+                p.volumeAbsorption[c] = colour[c] > 0.0f ? float(-std::log(double(colour[c])) / distance) : 1e30f;
+        if (thickness > 0.0 && p.transmissionTexture.valid() && p.volumeAbsorption != glm::vec3(0.0f))
+            scene_.warnings.push_back(line(f, vp, "absorption ignored: the transmission is textured (decided per hit, as clear glass)"));
+    }
     if (const Value* c = extension(g.extensions, "KHR_materials_clearcoat", f, place)) {
         const std::string cp = ext + "KHR_materials_clearcoat";
         p.clearcoat = float(number(c, "clearcoatFactor", 0.0, 0.0, 1.0, f, cp));

@@ -62,6 +62,10 @@ struct PbrParams {
     TextureRef specularTexture;            ///< linear, factor in A
     TextureRef specularColorTexture;       ///< sRGB colour
     float transmission = 0.0f;             ///< KHR_materials_transmission transmissionFactor in [0,1]
+    /// KHR_materials_volume with thicknessFactor > 0: absorption inside, -ln(attenuationColor) /
+    /// attenuationDistance per channel (1/world unit; 0: none). Given to the glass that
+    /// transmission becomes (transmittedMaterial).
+    glm::vec3 volumeAbsorption{0.0f};
     TextureRef transmissionTexture;        ///< linear, factor in R
     float clearcoat = 0.0f;                ///< KHR_materials_clearcoat clearcoatFactor in [0,1] (0: no coat)
     TextureRef clearcoatTexture;           ///< linear, factor in R

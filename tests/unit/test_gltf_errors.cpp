@@ -3,6 +3,7 @@
 // crash (run these under ASan + UBSan: the asan preset).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -465,6 +466,38 @@ TEST(GltfErrors, WhatAnUnlitMaterialIgnoresIsAWarning) {
     EXPECT_NE(s.warnings[0].find("material 0 (\"u\")/alphaMode: ignored for an unlit material"), std::string::npos) << s.warnings[0];
     EXPECT_NE(s.warnings[1].find("mesh 0 (\"tri\") primitive 0: COLOR_0 ignored: its material \"u\" renders as an emitter"),
               std::string::npos) << s.warnings[1];
+}
+
+// KHR_materials_volume (github.com/KhronosGroup/glTF, extensions/2.0/Khronos/KHR_materials_volume):
+// with thicknessFactor > 0 the glass that transmission becomes absorbs -ln(attenuationColor) /
+// attenuationDistance per unit length; thin-walled (thickness 0) it does not; bad values are one
+// line naming the place.
+TEST(GltfErrors, VolumeAbsorptionIsReadAndChecked) {
+    auto volume = [](const char* name, const char* ext) {
+        return writeCase({name, [ext](Json& d, Bytes&) {
+            d["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume"};
+            d["materials"] = Json::array({{{"name", "glass"},
+                                           {"extensions",
+                                            {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                             {"KHR_materials_volume", Json::parse(ext)}}}}});
+            d["meshes"][0]["primitives"][0]["material"] = 0;
+        }, ""});
+    };
+    const Scene s = loadSceneGltf(volume("volume", R"({"thicknessFactor": 1, "attenuationColor": [0.5, 0.25, 1], "attenuationDistance": 2})"));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    const Material k = kernelMaterial(s.materials.at(0));
+    EXPECT_EQ(k.type, MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(k.absorption.x, float(std::log(2.0) / 2.0));
+    EXPECT_FLOAT_EQ(k.absorption.y, float(std::log(4.0) / 2.0));
+    EXPECT_EQ(k.absorption.z, 0.0f);
+    const Scene thin = loadSceneGltf(volume("volume_thin", R"({"thicknessFactor": 0, "attenuationColor": [0.5, 0.5, 0.5], "attenuationDistance": 1})"));
+    EXPECT_EQ(kernelMaterial(thin.materials.at(0)).absorption, glm::vec3(0.0f));
+    const Scene clear = loadSceneGltf(volume("volume_default", R"({"thicknessFactor": 3})"));  // distance +inf: clear
+    EXPECT_EQ(kernelMaterial(clear.materials.at(0)).absorption, glm::vec3(0.0f));
+    expectError(volume("volume_distance", R"({"thicknessFactor": 1, "attenuationDistance": 0})"),
+                "material 0 (\"glass\")/extensions/KHR_materials_volume/attenuationDistance: must be > 0");
+    expectError(volume("volume_colour", R"({"thicknessFactor": 1, "attenuationColor": [2, 0, 0]})"),
+                "KHR_materials_volume/attenuationColor");
 }
 
 TEST(GltfErrors, BrokenContainersAndFiles) {
