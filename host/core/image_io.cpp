@@ -4,17 +4,15 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <climits>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
-#include <system_error>
 #include <vector>
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/image_formats.h"
+#include "core/input_file.h"
 #include "core/tonemap.h"
 
 namespace vkp {
@@ -42,21 +40,6 @@ void encodePng(const Image& image, const WriteOptions& options, std::ostream& ou
     if (!stbi_write_png_to_func(writeToStream, &out, w, h, 3, srgb.data(), 3 * w)) {
         throw InputError(name + ": cannot encode PNG");
     }
-}
-
-std::vector<uint8_t> readFileBytes(const fs::path& path) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw InputError(path.string() + ": file not found");
-    if (!fs::is_regular_file(st)) throw InputError(path.string() + ": not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        const int err = errno;
-        throw InputError(path.string() + ": cannot open: " + std::error_code(err, std::generic_category()).message());
-    }
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path.string() + ": read error");
-    return bytes;
 }
 
 }  // namespace
@@ -127,7 +110,7 @@ Image decodeImage(std::span<const uint8_t> bytes, ImageFormat format, const std:
 Image readImage(const fs::path& path) {
     const ImageFormat format = imageFormatFromPath(path);
     if (format == ImageFormat::Png) return decodeImage({}, format, path.string());  // throws
-    const std::vector<uint8_t> bytes = readFileBytes(path);
+    const std::vector<uint8_t> bytes = readInputBytes(path);
     return decodeImage(bytes, format, path.string());
 }
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string_view>
@@ -16,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "core/input_file.h"
 #include "scene/gltf_parts.h"
 #include "scene/json_reader.h"
 
@@ -48,23 +48,14 @@ std::string expandFilePath(const std::string& path, void*) { return path; }  // 
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) {
-        ctx->unreadable.emplace(path, "cannot open the file (permissions?)");
-        if (err) *err += "cannot open";
-        return false;
-    }
-    const std::streamoff size = in.tellg();
-    if (size < 0 || static_cast<std::uint64_t>(size) >= (1ull << 32)) {
-        ctx->unreadable.emplace(path, "cannot read (4 GiB or larger?)");
-        if (err) *err += "too large";
-        return false;
-    }
-    out->resize(static_cast<std::size_t>(size));
-    in.seekg(0);
-    if (size > 0 && !in.read(reinterpret_cast<char*>(out->data()), size)) {
-        ctx->unreadable.emplace(path, "read error");
-        if (err) *err += "read error";
+    try {
+        *out = readInputBytes(path);
+    } catch (const InputError& e) {
+        // "<path>: cannot read: <reason>": the reason, for the line that names the uri.
+        const std::string what = e.what();
+        const std::string prefix = path + ": cannot read: ";
+        ctx->unreadable.emplace(path, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+        if (err) *err += "cannot read";
         return false;
     }
     return true;
@@ -318,7 +309,7 @@ bool extensionImplemented(const std::string& name) {
 Document readDocument(const std::filesystem::path& path) {
     Document doc;
     doc.file = path.string();
-    const std::string bytes = json::readTextFile(path);
+    const std::string bytes = readInputFile(path);
     if (bytes.size() >= (1ull << 32) - 1) fail(doc.file, "(document)", "4 GiB or larger: not a glTF file vkpath can read");
 
     std::error_code ec;

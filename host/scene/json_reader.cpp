@@ -4,9 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <system_error>
 
 #include "core/errors.h"
 
@@ -82,19 +79,6 @@ std::string formatError(const std::string& file, std::string_view where, std::st
         if (u < 0x20 || u == 0x7f) c = ' ';
     }
     return line;
-}
-
-std::string readTextFile(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) throw InputError(name + ": cannot read: is a directory");
-    if (!std::filesystem::exists(file, ec)) throw InputError(name + ": cannot read: no such file");
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot read: cannot open the file (permissions?)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read: read error");
-    return text.str();
 }
 
 Json parseDocument(const std::string& text, const std::string& file) {

@@ -36,9 +36,6 @@ std::string formatError(const std::string& file, std::string_view where, std::st
 /// duplicate keys and numbers out of double range with "<file>: <pointer>: ...".
 Json parseDocument(const std::string& text, const std::string& file);
 
-/// Read a whole file; InputError "<file>: cannot read: <reason>" if it cannot be.
-std::string readTextFile(const std::filesystem::path& file);
-
 /// An allowed interval of numbers, closed or open at either end.
 struct Range {
     double lo = -std::numeric_limits<double>::infinity();

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/input_file.h"
 #include "scene/gltf.h"
 #include "scene/json_reader.h"
 #include "scene/scene.h"
@@ -167,7 +168,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
 }
 
 Scene loadSceneJson(const std::filesystem::path& file, const SceneJsonOptions& options) {
-    return parseSceneJson(json::readTextFile(file), file, options);
+    return parseSceneJson(readInputFile(file), file, options);
 }
 
 }  // namespace vkp

@@ -2,6 +2,7 @@
 // output file written or clobbered. None of these cases reaches the device.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 
 #include "run_process.h"
@@ -119,6 +120,22 @@ TEST_F(CliErrors, NoVulkanDriverIsExitCode2WithAFix) {
     EXPECT_EQ(i.exitCode, 0) << i.err;
     EXPECT_NE(i.out.find("variant      "), std::string::npos) << i.out;
     EXPECT_NE(i.out.find("device       none"), std::string::npos) << i.out;
+}
+
+// A device, a link to one or a FIFO as the scene: one line naming it, exit 1. Under a memory limit
+// and a time limit, so that a regression fails here (exit 124 or a bad_alloc) instead of reading
+// /dev/zero into all the memory there is.
+TEST_F(CliErrors, DevicesFifosAndLinksToThemAreRefused) {
+    std::filesystem::remove(dir / "zero.json");
+    std::filesystem::create_symlink("/dev/zero", dir / "zero.json");
+    std::filesystem::remove(dir / "fifo.json");
+    ASSERT_EQ(std::system(("mkfifo '" + (dir / "fifo.json").string() + "'").c_str()), 0);
+    for (const std::string scene : {"/dev/zero", "/dev/urandom", "zero.json", "fifo.json"}) {
+        const ProcessResult r = run({"info", scene}, "ulimit -v 2000000 && timeout 60");
+        EXPECT_EQ(r.exitCode, 1) << scene << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(scene + ": cannot read: not a regular file"), std::string::npos) << r.err;
+    }
 }
 
 TEST_F(CliErrors, HelpAndVersion) {
