@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -130,12 +131,17 @@ public:
     std::string choice(std::string_view key, std::initializer_list<std::string_view> choices,
                        std::string_view def);
 
+    /// Every member in file order, as (key, value); every key is then known (for an object whose
+    /// keys the file chooses, such as "materials"). Linear in the number of members.
+    std::vector<std::pair<std::string, Value>> members();
+
     /// Refuse the first key (in file order) that was never asked for.
     void finish() const;
 
 private:
     Value v_;
     std::vector<std::string> known_;  // in the order they were asked for (for messages)
+    bool allKnown_ = false;           // members() was called
 };
 
 }  // namespace vkp::json

@@ -99,13 +99,11 @@ Material readMaterial(const std::string& name, const json::Value& v) {
 
 void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index) {
     json::Object o = v.object();
-    for (const auto& [name, unused] : v.json().items()) {
-        (void)unused;
+    for (const auto& [name, value] : o.members()) {
         const std::uint32_t i = static_cast<std::uint32_t>(scene.materials.size());
-        scene.materials.push_back(readMaterial(name, o.required(name)));
+        scene.materials.push_back(readMaterial(name, value));
         index.emplace(name, i);
     }
-    o.finish();
 }
 
 }  // namespace scenejson
