@@ -138,6 +138,24 @@ TEST_F(CliErrors, DevicesFifosAndLinksToThemAreRefused) {
     }
 }
 
+// A "loader" without symbols (an empty libvulkan.so.1 on LD_LIBRARY_PATH): one line, exit 2, for
+// every command that opens Vulkan, and no output file.
+TEST_F(CliErrors, AStubVulkanLoaderIsExitCode2) {
+    const std::string env = std::string("LD_LIBRARY_PATH='") + VKPATH_STUB_VULKAN_DIR + "'";
+    ASSERT_TRUE(std::filesystem::exists(std::filesystem::path(VKPATH_STUB_VULKAN_DIR) / "libvulkan.so.1"));
+    std::filesystem::remove(dir / "out.png");
+    const std::string scene = (scenesDir() / "cornell-book3.json").string();
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"devices"}, {"render", scene, "--spp", "1", "-o", "out.png"}}) {
+        const ProcessResult r = run(args, env);
+        EXPECT_EQ(r.exitCode, 2) << args[0] << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("no usable Vulkan loader"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("libvulkan.so"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+}
+
 TEST_F(CliErrors, HelpAndVersion) {
     ProcessResult r = run({"--help"});
     EXPECT_EQ(r.exitCode, 0);
