@@ -29,18 +29,20 @@ constexpr int kMaxImageSide = 16384;
 /// What the callbacks tinygltf calls need, and what they found wrong.
 struct LoadContext {
     const tinygltf::Model* model = nullptr;
-    std::map<std::string, std::string> unreadable;  ///< path -> reason
+    std::map<std::string, ExternalFile> files;       ///< the only files tinygltf may read (externalFiles)
+    std::map<std::string, std::string> unreadable;  ///< path tinygltf asked for -> reason
     std::set<int> ktx2;                              ///< images kept undecoded: KTX2 (KHR_texture_basisu)
 };
 
 bool fileExists(const std::string& path, void* user) {
-    // tinygltf tries <base dir>/<uri>, then ./<uri>: only the first (absolute) one is ours.
-    const std::filesystem::path p(path);
-    std::error_code ec;
-    if (!p.is_absolute()) return false;
-    if (std::filesystem::is_regular_file(p, ec)) return true;
+    // tinygltf tries <base dir>/<uri>, then ./<uri>: only the first is ours, and only for a uri
+    // that externalFiles checked.
     auto* ctx = static_cast<LoadContext*>(user);
-    ctx->unreadable.emplace(path, std::filesystem::exists(p, ec) ? "not a regular file" : "no such file");
+    const auto f = ctx->files.find(path);
+    if (f == ctx->files.end()) return false;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(f->second.file, ec)) return true;
+    ctx->unreadable.emplace(path, std::filesystem::exists(f->second.file, ec) ? "not a regular file" : "no such file");
     return false;
 }
 
@@ -48,12 +50,18 @@ std::string expandFilePath(const std::string& path, void*) { return path; }  // 
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
+    const auto f = ctx->files.find(path);
+    if (f == ctx->files.end()) {  // not reached: fileExists said no
+        if (err) *err += "not a file the document names";
+        return false;
+    }
+    const std::string name = f->second.file.string();
     try {
-        *out = readInputBytes(path);
+        *out = readInputBytes(f->second.file);
     } catch (const InputError& e) {
         // "<path>: cannot read: <reason>": the reason, for the line that names the uri.
         const std::string what = e.what();
-        const std::string prefix = path + ": cannot read: ";
+        const std::string prefix = name + ": cannot read: ";
         ctx->unreadable.emplace(path, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
         if (err) *err += "cannot read";
         return false;
@@ -306,7 +314,7 @@ bool extensionImplemented(const std::string& name) {
     return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
 }
 
-Document readDocument(const std::filesystem::path& path) {
+Document readDocument(const std::filesystem::path& path, const AllowedPaths& allowed) {
     Document doc;
     doc.file = path.string();
     const std::string bytes = readInputFile(path);
@@ -328,6 +336,7 @@ Document readDocument(const std::filesystem::path& path) {
         if (binary) {
             const auto [at, n] = checkGlb(bytes, doc.file);
             checkNesting(bytes.data() + at, n, doc.file);
+            ctx.files = externalFiles(std::string_view(bytes.data() + at, n), doc.file, base, allowed);
             checkLights(bytes.data() + at, n, doc.file);
             checkSkins(bytes.data() + at, n, doc.file);
             const std::string json = rewriteForTinygltf(std::string_view(bytes.data() + at, n), doc.file, rewritten);
@@ -337,6 +346,7 @@ Document readDocument(const std::filesystem::path& path) {
                                              static_cast<unsigned int>(in.size()), base.string());
         } else {
             checkNesting(bytes.data(), bytes.size(), doc.file);
+            ctx.files = externalFiles(bytes, doc.file, base, allowed);
             checkLights(bytes.data(), bytes.size(), doc.file);
             checkSkins(bytes.data(), bytes.size(), doc.file);
             const std::string json = rewriteForTinygltf(bytes, doc.file, rewritten);
@@ -353,8 +363,8 @@ Document readDocument(const std::filesystem::path& path) {
     }
     if (!ctx.unreadable.empty()) {
         const auto& [p, why] = *ctx.unreadable.begin();
-        fail(doc.file, "uri \"" + std::filesystem::path(p).lexically_relative(base).string() + "\"",
-             "cannot read " + p + ": " + why);
+        const ExternalFile& f = ctx.files.at(p);
+        fail(doc.file, f.place, "cannot read " + f.file.string() + ": " + why);
     }
     if (!ok) {
         const std::string what = oneLine(err);

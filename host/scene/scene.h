@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "scene/file_references.h"
 #include "shared/kinds.h"
 
 namespace vkp {
@@ -275,6 +276,10 @@ struct SceneJsonOptions {
     /// The image size a scene without "camera" is framed for (its framing camera, as a glTF file
     /// without one gets): one of them alone makes a square; neither: kGltfDefaultImageSide square.
     std::optional<std::uint32_t> width, height;
+    /// --allow-path: folders besides the JSON file's own that its included glTF files and its
+    /// environment map may be in (file_references.h); an included glTF file's buffers and images
+    /// may be in its own folder or these.
+    AllowedPaths allowPaths;
 };
 
 /// Load a scene in vkpath's JSON format (scenes/README.md). Throws InputError with one line

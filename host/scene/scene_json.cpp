@@ -132,7 +132,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
         if (render) scene.render = scenejson::readRender(*render);
         std::map<std::string, std::uint32_t> index;
         if (materials) scenejson::readMaterials(*materials, scene, index);
-        scenejson::readObjects(objects, index, options.instancing, scene);
+        scenejson::readObjects(objects, index, options, scene);
         return scene;
     };
     Scene scene;
@@ -160,7 +160,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     if (environment) {  // directions only: the same in every frame, and the map is read once
         if (scene.render.background != glm::vec3(0.0f))
             environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
-        scene.environment = scenejson::readEnvironment(*environment, file);
+        scene.environment = scenejson::readEnvironment(*environment, file, options.allowPaths);
     }
     return scene;
 }

@@ -96,9 +96,13 @@ TEST_F(CliErrors, LightOptionsAndTheBlackSceneWarning) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("env:map"), std::string::npos) << r.out;
-    // A JSON scene of nothing but a glTF file: no camera, no materials (the framing camera).
+    // A JSON scene of nothing but a glTF file: no camera, no materials (the framing camera). The
+    // file is in another folder: --allow-path names it.
     write("wrap.json", R"({"objects": [{"type": "gltf", "file": ")" + scene + R"("}]})");
     r = run({"info", "wrap.json", "--background", "1"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("wrap.json: /objects/0/file: resolves to "), std::string::npos) << r.err;
+    r = run({"info", "wrap.json", "--background", "1", "--allow-path", (scenesDir() / "gltf").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_NE(r.out.find("image        512x512"), std::string::npos) << r.out;

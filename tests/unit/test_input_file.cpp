@@ -98,7 +98,7 @@ TEST_F(InputFile, EveryLoaderRefusesDevicesAndFifos) {
     fifo("fifo.bin");
     const fs::path withBuffer = write("buffer.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "fifo.bin", "byteLength": 4}]})");
     const std::string b = errorOf([&] { loadSceneGltf(withBuffer); });
-    EXPECT_NE(b.find("buffer.gltf: uri \"fifo.bin\": cannot read"), std::string::npos) << b;
+    EXPECT_NE(b.find("buffer.gltf: buffer 0: uri \"fifo.bin\": cannot read"), std::string::npos) << b;
     EXPECT_NE(b.find(notRegular), std::string::npos) << b;
     fifo("fifo.hdr");
     const std::string camera = R"("camera": {"lookfrom": [0,0,1], "lookat": [0,0,0], "vfov": 40, "width": 8, "height": 8})";
