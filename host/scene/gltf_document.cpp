@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "core/image_header.h"
 #include "core/input_file.h"
 #include "scene/gltf_parts.h"
 #include "scene/json_reader.h"
@@ -32,6 +33,7 @@ struct LoadContext {
     std::map<std::string, ExternalFile> files;       ///< the only files tinygltf may read (externalFiles)
     std::map<std::string, std::string> unreadable;  ///< path tinygltf asked for -> reason
     std::set<int> ktx2;                              ///< images kept undecoded: KTX2 (KHR_texture_basisu)
+    std::pair<std::string, std::string> imageError;  ///< the first image that cannot be used: place, message
 };
 
 bool fileExists(const std::string& path, void* user) {
@@ -77,7 +79,7 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 /// stb_image's reason, printable ASCII only (it may quote bytes of the file, e.g. a PNG chunk type).
 std::string stbReason() {
     const char* r = stbi_failure_reason();
-    std::string out = r ? r : "unknown reason";
+    std::string out = r && *r ? "corrupt data (stb_image: \"" + std::string(r) + "\")" : "corrupt data (stb_image gives no reason)";
     for (char& c : out) {
         if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
     }
@@ -89,23 +91,23 @@ std::string stbReason() {
 bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
-    const std::string where = "image " + std::to_string(index) + ": ";
+    // The first image that fails is reported by readDocument as "<file>: image <i>: <message>".
+    auto refuse = [&](const std::string& message) {
+        if (ctx->imageError.first.empty()) ctx->imageError = {"image " + std::to_string(index), message};
+        *err += "image " + std::to_string(index) + ": " + message;
+        return false;
+    };
     if (image->bufferView >= 0) {
         const auto& views = ctx->model->bufferViews;
         const auto& view = views.at(static_cast<std::size_t>(image->bufferView));  // tinygltf checked both
         const auto& buffer = ctx->model->buffers.at(static_cast<std::size_t>(view.buffer));
         if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
-            *err += where + "bufferView " + std::to_string(image->bufferView) + " (bytes " +
-                    std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
-                    ") is outside buffer " + std::to_string(view.buffer) + " (" +
-                    std::to_string(buffer.data.size()) + " bytes)";
-            return false;
+            return refuse("bufferView " + std::to_string(image->bufferView) + " (bytes " + std::to_string(view.byteOffset) +
+                          " + " + std::to_string(view.byteLength) + ") is outside buffer " + std::to_string(view.buffer) +
+                          " (" + std::to_string(buffer.data.size()) + " bytes)");
         }
     }
-    if (size <= 0) {
-        *err += where + "no image data";
-        return false;
-    }
+    if (size <= 0) return refuse("no image data");
     // KTX2 (KHR_texture_basisu): no Debian package decodes it. Kept undecoded (no pixels), so a
     // file that also gives a PNG or JPEG fallback loads; a texture that would use it is refused
     // by name (gltf_material.cpp).
@@ -116,21 +118,26 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
         image->image.clear();
         return true;
     }
+    // The header first: stb_image says "unknown image type" for a size beyond its own limits and
+    // little or nothing for a truncated file.
+    const ImageHeader header = readImageHeader({bytes, static_cast<std::size_t>(size)});
+    auto sizeProblem = [&](std::uint64_t w, std::uint64_t h, const std::string& format) {
+        return refuse(format + " of " + std::to_string(w) + "x" + std::to_string(h) + " pixels: each side must be in [1, " +
+                      std::to_string(kMaxImageSide) + "]");
+    };
+    if (!header.format.empty()) {
+        if (!header.problem.empty()) return refuse("cannot decode the " + header.format + ": " + header.problem);
+        if (header.width == 0 || header.height == 0 || header.width > kMaxImageSide || header.height > kMaxImageSide)
+            return sizeProblem(header.width, header.height, header.format);
+    }
+    const std::string format = header.format.empty() ? std::string("image") : header.format;
     int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
-        *err += where + "cannot decode (PNG or JPEG expected): " + stbReason();
-        return false;
-    }
-    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
-        *err += where + "size " + std::to_string(w) + "x" + std::to_string(h) + " is not in [1, " +
-                std::to_string(kMaxImageSide) + "] per side";
-        return false;
-    }
+    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp))
+        return refuse("cannot decode the " + format + " (PNG or JPEG expected): " + stbReason());
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
+        return sizeProblem(std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)), format);
     unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
-    if (!pixels) {
-        *err += where + "cannot decode: " + stbReason();
-        return false;
-    }
+    if (!pixels) return refuse("cannot decode the " + format + ": " + stbReason());
     image->width = w;
     image->height = h;
     image->component = 4;
@@ -366,6 +373,7 @@ Document readDocument(const std::filesystem::path& path, const AllowedPaths& all
         const ExternalFile& f = ctx.files.at(p);
         fail(doc.file, f.place, "cannot read " + f.file.string() + ": " + why);
     }
+    if (!ctx.imageError.first.empty()) fail(doc.file, ctx.imageError.first, ctx.imageError.second);
     if (!ok) {
         const std::string what = oneLine(err);
         if (startsWith(what, "[json.exception")) fail(doc.file, "(document)", "invalid JSON: " + what);

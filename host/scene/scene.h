@@ -318,6 +318,15 @@ void forEachShape(const Scene& scene, F&& f) {
         for (const Shape& s : m.shapes) f(s);
 }
 
+/// Largest |coordinate| a loader places, relative to the camera (Scene::origin): the BVH computes
+/// boxes and box centres in float (lo + hi must not overflow 3.4e38), so every shape's bounding box
+/// must lie within +-1e38 of the camera. The loaders refuse a shape beyond it, naming it.
+inline constexpr double kMaxSceneCoordinate = 1e38;
+
+/// The largest |coordinate| of s's bounding box, computed in double (no overflow): a sphere's
+/// centre +- radius, a quad's four corners, a triangle's vertices.
+double shapeReach(const Shape& s);
+
 /// Every component of p is finite (a position that fits a float).
 inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 

@@ -2,6 +2,7 @@
 // triangles, included glTF files and punctual lights, moved to world space by their "transform",
 // and the light list.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -139,6 +140,12 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         if (!allFinite(w.p0) || !allFinite(w.p1) || !allFinite(w.p2) || !std::isfinite(w.radius) ||
             (w.type == ShapeType::Sphere && !(w.radius > 0.0f))) {
             v.fail("the transformed " + type + " does not fit 32-bit floats relative to the camera (overflow or underflow)");
+        }
+        if (const double reach = shapeReach(w); !(reach <= kMaxSceneCoordinate)) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", reach);
+            v.fail("the " + type + " reaches " + text + " from the camera: its coordinates overflow 32-bit floats " +
+                   "(its bounding box must lie within +-1e38 of the camera, float's largest value being 3.4e38)");
         }
         if (w.type == ShapeType::Quad && parallelOrZero(w.p1, w.p2)) {
             o.required("transform").fail("makes the " + type + " degenerate (u x v = 0 in 32-bit floats)");
