@@ -88,6 +88,9 @@ render options:
   --instancing M          glTF: auto (default: a mesh several nodes use, or of a file a JSON scene includes
                           several times, is stored once, two-level BVH) | flatten (every node's triangles
                           placed in the world); also for 'vkpath info'
+  --allow-path DIR        a folder (and those below it) that the scene's references may reach besides
+                          the referring file's own: included glTF files, environment maps, glTF buffers
+                          and images (repeatable; symbolic links are followed before the check)
   --exposure EV           exposure in stops for PNG output (default 0)
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
@@ -151,6 +154,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--device") { a.device = value(f); continue; }
         if (f == "--gltf-scene") { a.gltfScene = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
         if (f == "--camera") { a.camera = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
+        if (f == "--allow-path") { a.allowPaths.emplace_back(fileValue(f)); continue; }
         if (f == "--instancing") {
             const std::string v = value(f);
             if (v == "flatten") a.instancing = false;

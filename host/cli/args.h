@@ -33,6 +33,9 @@ struct CliArgs {
     std::optional<std::uint32_t> gltfScene;  ///< --gltf-scene N: scene of a .gltf/.glb (default: the file's)
     std::optional<std::uint32_t> camera;     ///< --camera N: camera of a .gltf/.glb (default: its first perspective one)
     bool instancing = true;                  ///< --instancing auto (true) | flatten (false): glTF shared meshes
+    /// --allow-path DIR (repeatable): folders a scene's file references may reach besides the
+    /// referring file's own (scene/file_references.h).
+    std::vector<std::filesystem::path> allowPaths;
     /// Light for a scene that brings none (or replaces the scene's): --background R,G,B (linear
     /// radiance of escaping rays; replaces the scene's environment), --environment FILE (an
     /// equirectangular .hdr/.exr/.pfm map), --environment-strength S and --environment-rotate DEG

@@ -95,12 +95,14 @@ RenderJob makeJob(const CliArgs& a) {
         o.width = a.width;  // one of them alone keeps the camera's aspect ratio
         o.height = a.height;
         o.instancing = a.instancing;
+        o.allowPaths = a.allowPaths;
         s = loadSceneGltf(a.scene, o);
     } else {
         SceneJsonOptions o;
         o.instancing = a.instancing;  // included glTF files
         o.width = a.width;            // a scene without "camera" is framed for this size
         o.height = a.height;
+        o.allowPaths = a.allowPaths;
         s = loadSceneJson(a.scene, o);
     }
     for (const std::string& w : s.warnings) std::fprintf(stderr, "vkpath: warning: %s\n", w.c_str());

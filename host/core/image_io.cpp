@@ -4,18 +4,16 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <climits>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
 #include <vector>
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/image_formats.h"
+#include "core/input_file.h"
 #include "core/tonemap.h"
 
 namespace vkp {
@@ -78,21 +76,6 @@ std::string withHdrLines(std::string hdr, const std::vector<std::pair<std::strin
     for (const auto& [key, value] : metadata) lines += key + "=" + value + "\n";
     hdr.insert(hdr.find('\n') + 1, lines);
     return hdr;
-}
-
-std::vector<uint8_t> readFileBytes(const fs::path& path) {
-    std::error_code ec;
-    const fs::file_status st = fs::status(path, ec);
-    if (!fs::exists(st)) throw InputError(path.string() + ": file not found");
-    if (!fs::is_regular_file(st)) throw InputError(path.string() + ": not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        const int err = errno;
-        throw InputError(path.string() + ": cannot open: " + std::error_code(err, std::generic_category()).message());
-    }
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw InputError(path.string() + ": read error");
-    return bytes;
 }
 
 }  // namespace
@@ -182,7 +165,7 @@ Image decodeImage(std::span<const uint8_t> bytes, ImageFormat format, const std:
 Image readImage(const fs::path& path) {
     const ImageFormat format = imageFormatFromPath(path);
     if (format == ImageFormat::Png) return decodeImage({}, format, path.string());  // throws
-    const std::vector<uint8_t> bytes = readFileBytes(path);
+    const std::vector<uint8_t> bytes = readInputBytes(path);
     return decodeImage(bytes, format, path.string());
 }
 

@@ -1,18 +1,17 @@
 #include "render/accum_file.h"
 
-#include <sys/stat.h>
 #include <tinyexr.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <ostream>
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/input_file.h"
 
 namespace vkp {
 
@@ -23,27 +22,27 @@ constexpr const char* kKeyPrefix = "vkpath.key.";
 /// A channel: its name and where its value of pixel i is in the state's arrays.
 struct ChannelMap {
     std::string name;
-    std::vector<float>* array;  // null: the active mask
+    std::vector<float> RenderState::*array;  // null: the active mask
     std::uint32_t offset;       // float within the pixel's kStateFloatsPerPixel
 };
 
-std::vector<ChannelMap> channelMaps(RenderState& st, bool adaptive) {
+std::vector<ChannelMap> channelMaps(bool adaptive) {
     std::vector<ChannelMap> m;
     const char* rgb[3] = {"R", "G", "B"};
     for (std::uint32_t c = 0; c < 3; ++c) {
-        m.push_back({std::string("sum.") + rgb[c], &st.sum, c});
-        m.push_back({std::string("sum_lo.") + rgb[c], &st.sum, 4 + c});
-        m.push_back({std::string("sumsq.") + rgb[c], &st.sumSq, c});
-        m.push_back({std::string("sumsq_lo.") + rgb[c], &st.sumSq, 4 + c});
+        m.push_back({std::string("sum.") + rgb[c], &RenderState::sum, c});
+        m.push_back({std::string("sum_lo.") + rgb[c], &RenderState::sum, 4 + c});
+        m.push_back({std::string("sumsq.") + rgb[c], &RenderState::sumSq, c});
+        m.push_back({std::string("sumsq_lo.") + rgb[c], &RenderState::sumSq, 4 + c});
     }
-    m.push_back({"count", &st.sum, 3});
-    m.push_back({"count_lo", &st.sum, 7});
+    m.push_back({"count", &RenderState::sum, 3});
+    m.push_back({"count_lo", &RenderState::sum, 7});
     if (adaptive) {
         for (std::uint32_t c = 0; c < 3; ++c) {
-            m.push_back({std::string("decision.") + rgb[c], &st.decision, c});
-            m.push_back({std::string("decision_sq.") + rgb[c], &st.decision, 4 + c});
+            m.push_back({std::string("decision.") + rgb[c], &RenderState::decision, c});
+            m.push_back({std::string("decision_sq.") + rgb[c], &RenderState::decision, 4 + c});
         }
-        m.push_back({"decision.count", &st.decision, 3});
+        m.push_back({"decision.count", &RenderState::decision, 3});
         m.push_back({"active", nullptr, 0});
     }
     std::sort(m.begin(), m.end(), [](const ChannelMap& a, const ChannelMap& b) { return a.name < b.name; });  // EXR's order
@@ -86,13 +85,12 @@ std::uint64_t parseU64(const std::filesystem::path& path, const std::string& att
 
 void encodeAccumFile(std::ostream& out, const std::filesystem::path& path, const RenderKey& key, const RenderState& state) {
     const bool adaptive = state.adaptive();
-    RenderState& st = const_cast<RenderState&>(state);  // channelMaps only reads through it here
-    const std::vector<ChannelMap> maps = channelMaps(st, adaptive);
+    const std::vector<ChannelMap> maps = channelMaps(adaptive);
     const std::size_t n = std::size_t(state.pixels());
     std::vector<std::vector<float>> planes(maps.size(), std::vector<float>(n));
     for (std::size_t k = 0; k < maps.size(); ++k)
         for (std::size_t i = 0; i < n; ++i)
-            planes[k][i] = maps[k].array ? (*maps[k].array)[i * kStateFloatsPerPixel + maps[k].offset] : float(state.active[i]);
+            planes[k][i] = maps[k].array ? (state.*maps[k].array)[i * kStateFloatsPerPixel + maps[k].offset] : float(state.active[i]);
 
     std::vector<EXRChannelInfo> channels(maps.size());
     std::vector<int> types(maps.size(), TINYEXR_PIXELTYPE_FLOAT);
@@ -152,14 +150,7 @@ void writeAccumFile(const std::filesystem::path& path, const RenderKey& key, con
 AccumFile readAccumFile(const std::filesystem::path& path) {
     const std::string name = path.string();
     auto fail = [&](const std::string& what) -> void { throw InputError(name + ": " + what); };
-    struct stat stt {};
-    if (::stat(path.c_str(), &stt) != 0) fail("cannot open: no such file or not readable");
-    if (!S_ISREG(stt.st_mode)) fail("not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open");
-    std::vector<unsigned char> bytes(std::size_t(stt.st_size));
-    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
-    if (!in || in.gcount() != std::streamsize(bytes.size())) fail("cannot read");
+    const std::vector<unsigned char> bytes = readInputBytes(path);  // a regular file only (core/input_file.h)
 
     EXRVersion version;
     if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
@@ -226,14 +217,14 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
         st.decision.assign(n * kStateFloatsPerPixel, 0.0f);
         st.active.assign(n, 0);
     }
-    for (const ChannelMap& m : channelMaps(st, adaptive)) {
+    for (const ChannelMap& m : channelMaps(adaptive)) {
         int index = -1;
         for (int c = 0; c < header.h.num_channels; ++c)
             if (m.name == header.h.channels[c].name) index = c;
         if (index < 0 || !exr.i.images[index]) fail("no channel " + m.name);
         const float* plane = reinterpret_cast<const float*>(exr.i.images[index]);
         for (std::size_t i = 0; i < n; ++i) {
-            if (m.array) (*m.array)[i * kStateFloatsPerPixel + m.offset] = plane[i];
+            if (m.array) (st.*m.array)[i * kStateFloatsPerPixel + m.offset] = plane[i];
             else st.active[i] = plane[i] != 0.0f;
         }
     }

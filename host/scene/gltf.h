@@ -27,6 +27,9 @@ struct GltfOptions {
     /// in object space (Scene::meshes) with one Scene::instances entry per node, for a two-level
     /// BVH. false (--instancing flatten): every node's triangles are placed in the world (Scene::shapes).
     bool instancing = false;
+    /// --allow-path: folders besides the file's own that its buffers and images may be in
+    /// (file_references.h).
+    AllowedPaths allowPaths;
 };
 
 /// Default long side of the image, in pixels, when neither the file nor the options give a size.
@@ -62,7 +65,8 @@ struct GltfInclude {
 class GltfIncludes {
 public:
     /// scene receives every include; it is kept by reference and must not move while this lives.
-    GltfIncludes(Scene& scene, bool instancing);
+    /// allowed: folders besides each included file's own that its buffers and images may be in.
+    GltfIncludes(Scene& scene, bool instancing, AllowedPaths allowed = {});
     ~GltfIncludes();
     GltfIncludes(const GltfIncludes&) = delete;
     GltfIncludes& operator=(const GltfIncludes&) = delete;
@@ -80,6 +84,7 @@ private:
     static Key key(const std::filesystem::path& file, const GltfInclude& include);
     Scene& scene_;
     bool instancing_;
+    AllowedPaths allowed_;
     std::map<Key, std::unique_ptr<File>> files_;
 };
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string_view>
@@ -16,6 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "core/image_header.h"
+#include "core/input_file.h"
 #include "scene/gltf_parts.h"
 #include "scene/json_reader.h"
 
@@ -29,18 +30,21 @@ constexpr int kMaxImageSide = 16384;
 /// What the callbacks tinygltf calls need, and what they found wrong.
 struct LoadContext {
     const tinygltf::Model* model = nullptr;
-    std::map<std::string, std::string> unreadable;  ///< path -> reason
+    std::map<std::string, ExternalFile> files;       ///< the only files tinygltf may read (externalFiles)
+    std::map<std::string, std::string> unreadable;  ///< path tinygltf asked for -> reason
     std::set<int> ktx2;                              ///< images kept undecoded: KTX2 (KHR_texture_basisu)
+    std::pair<std::string, std::string> imageError;  ///< the first image that cannot be used: place, message
 };
 
 bool fileExists(const std::string& path, void* user) {
-    // tinygltf tries <base dir>/<uri>, then ./<uri>: only the first (absolute) one is ours.
-    const std::filesystem::path p(path);
-    std::error_code ec;
-    if (!p.is_absolute()) return false;
-    if (std::filesystem::is_regular_file(p, ec)) return true;
+    // tinygltf tries <base dir>/<uri>, then ./<uri>: only the first is ours, and only for a uri
+    // that externalFiles checked.
     auto* ctx = static_cast<LoadContext*>(user);
-    ctx->unreadable.emplace(path, std::filesystem::exists(p, ec) ? "not a regular file" : "no such file");
+    const auto f = ctx->files.find(path);
+    if (f == ctx->files.end()) return false;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(f->second.file, ec)) return true;
+    ctx->unreadable.emplace(path, std::filesystem::exists(f->second.file, ec) ? "not a regular file" : "no such file");
     return false;
 }
 
@@ -48,23 +52,20 @@ std::string expandFilePath(const std::string& path, void*) { return path; }  // 
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) {
-        ctx->unreadable.emplace(path, "cannot open the file (permissions?)");
-        if (err) *err += "cannot open";
+    const auto f = ctx->files.find(path);
+    if (f == ctx->files.end()) {  // not reached: fileExists said no
+        if (err) *err += "not a file the document names";
         return false;
     }
-    const std::streamoff size = in.tellg();
-    if (size < 0 || static_cast<std::uint64_t>(size) >= (1ull << 32)) {
-        ctx->unreadable.emplace(path, "cannot read (4 GiB or larger?)");
-        if (err) *err += "too large";
-        return false;
-    }
-    out->resize(static_cast<std::size_t>(size));
-    in.seekg(0);
-    if (size > 0 && !in.read(reinterpret_cast<char*>(out->data()), size)) {
-        ctx->unreadable.emplace(path, "read error");
-        if (err) *err += "read error";
+    const std::string name = f->second.file.string();
+    try {
+        *out = readInputBytes(f->second.file);
+    } catch (const InputError& e) {
+        // "<path>: cannot read: <reason>": the reason, for the line that names the uri.
+        const std::string what = e.what();
+        const std::string prefix = name + ": cannot read: ";
+        ctx->unreadable.emplace(path, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+        if (err) *err += "cannot read";
         return false;
     }
     return true;
@@ -78,7 +79,7 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 /// stb_image's reason, printable ASCII only (it may quote bytes of the file, e.g. a PNG chunk type).
 std::string stbReason() {
     const char* r = stbi_failure_reason();
-    std::string out = r ? r : "unknown reason";
+    std::string out = r && *r ? "corrupt data (stb_image: \"" + std::string(r) + "\")" : "corrupt data (stb_image gives no reason)";
     for (char& c : out) {
         if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
     }
@@ -90,23 +91,23 @@ std::string stbReason() {
 bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
     auto* ctx = static_cast<LoadContext*>(user);
-    const std::string where = "image " + std::to_string(index) + ": ";
+    // The first image that fails is reported by readDocument as "<file>: image <i>: <message>".
+    auto refuse = [&](const std::string& message) {
+        if (ctx->imageError.first.empty()) ctx->imageError = {"image " + std::to_string(index), message};
+        *err += "image " + std::to_string(index) + ": " + message;
+        return false;
+    };
     if (image->bufferView >= 0) {
         const auto& views = ctx->model->bufferViews;
         const auto& view = views.at(static_cast<std::size_t>(image->bufferView));  // tinygltf checked both
         const auto& buffer = ctx->model->buffers.at(static_cast<std::size_t>(view.buffer));
         if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
-            *err += where + "bufferView " + std::to_string(image->bufferView) + " (bytes " +
-                    std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) +
-                    ") is outside buffer " + std::to_string(view.buffer) + " (" +
-                    std::to_string(buffer.data.size()) + " bytes)";
-            return false;
+            return refuse("bufferView " + std::to_string(image->bufferView) + " (bytes " + std::to_string(view.byteOffset) +
+                          " + " + std::to_string(view.byteLength) + ") is outside buffer " + std::to_string(view.buffer) +
+                          " (" + std::to_string(buffer.data.size()) + " bytes)");
         }
     }
-    if (size <= 0) {
-        *err += where + "no image data";
-        return false;
-    }
+    if (size <= 0) return refuse("no image data");
     // KTX2 (KHR_texture_basisu): no Debian package decodes it. Kept undecoded (no pixels), so a
     // file that also gives a PNG or JPEG fallback loads; a texture that would use it is refused
     // by name (gltf_material.cpp).
@@ -117,21 +118,26 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
         image->image.clear();
         return true;
     }
+    // The header first: stb_image says "unknown image type" for a size beyond its own limits and
+    // little or nothing for a truncated file.
+    const ImageHeader header = readImageHeader({bytes, static_cast<std::size_t>(size)});
+    auto sizeProblem = [&](std::uint64_t w, std::uint64_t h, const std::string& format) {
+        return refuse(format + " of " + std::to_string(w) + "x" + std::to_string(h) + " pixels: each side must be in [1, " +
+                      std::to_string(kMaxImageSide) + "]");
+    };
+    if (!header.format.empty()) {
+        if (!header.problem.empty()) return refuse("cannot decode the " + header.format + ": " + header.problem);
+        if (header.width == 0 || header.height == 0 || header.width > kMaxImageSide || header.height > kMaxImageSide)
+            return sizeProblem(header.width, header.height, header.format);
+    }
+    const std::string format = header.format.empty() ? std::string("image") : header.format;
     int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
-        *err += where + "cannot decode (PNG or JPEG expected): " + stbReason();
-        return false;
-    }
-    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
-        *err += where + "size " + std::to_string(w) + "x" + std::to_string(h) + " is not in [1, " +
-                std::to_string(kMaxImageSide) + "] per side";
-        return false;
-    }
+    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp))
+        return refuse("cannot decode the " + format + " (PNG or JPEG expected): " + stbReason());
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
+        return sizeProblem(std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)), format);
     unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
-    if (!pixels) {
-        *err += where + "cannot decode: " + stbReason();
-        return false;
-    }
+    if (!pixels) return refuse("cannot decode the " + format + ": " + stbReason());
     image->width = w;
     image->height = h;
     image->component = 4;
@@ -316,10 +322,10 @@ bool extensionImplemented(const std::string& name) {
     return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* e) { return name == e; });
 }
 
-Document readDocument(const std::filesystem::path& path) {
+Document readDocument(const std::filesystem::path& path, const AllowedPaths& allowed) {
     Document doc;
     doc.file = path.string();
-    const std::string bytes = json::readTextFile(path);
+    const std::string bytes = readInputFile(path);
     if (bytes.size() >= (1ull << 32) - 1) fail(doc.file, "(document)", "4 GiB or larger: not a glTF file vkpath can read");
 
     std::error_code ec;
@@ -338,6 +344,7 @@ Document readDocument(const std::filesystem::path& path) {
         if (binary) {
             const auto [at, n] = checkGlb(bytes, doc.file);
             checkNesting(bytes.data() + at, n, doc.file);
+            ctx.files = externalFiles(std::string_view(bytes.data() + at, n), doc.file, base, allowed);
             checkLights(bytes.data() + at, n, doc.file);
             checkSkins(bytes.data() + at, n, doc.file);
             const std::string json = rewriteForTinygltf(std::string_view(bytes.data() + at, n), doc.file, rewritten);
@@ -347,6 +354,7 @@ Document readDocument(const std::filesystem::path& path) {
                                              static_cast<unsigned int>(in.size()), base.string());
         } else {
             checkNesting(bytes.data(), bytes.size(), doc.file);
+            ctx.files = externalFiles(bytes, doc.file, base, allowed);
             checkLights(bytes.data(), bytes.size(), doc.file);
             checkSkins(bytes.data(), bytes.size(), doc.file);
             const std::string json = rewriteForTinygltf(bytes, doc.file, rewritten);
@@ -363,9 +371,10 @@ Document readDocument(const std::filesystem::path& path) {
     }
     if (!ctx.unreadable.empty()) {
         const auto& [p, why] = *ctx.unreadable.begin();
-        fail(doc.file, "uri \"" + std::filesystem::path(p).lexically_relative(base).string() + "\"",
-             "cannot read " + p + ": " + why);
+        const ExternalFile& f = ctx.files.at(p);
+        fail(doc.file, f.place, "cannot read " + f.file.string() + ": " + why);
     }
+    if (!ctx.imageError.first.empty()) fail(doc.file, ctx.imageError.first, ctx.imageError.second);
     if (!ok) {
         const std::string what = oneLine(err);
         if (startsWith(what, "[json.exception")) fail(doc.file, "(document)", "invalid JSON: " + what);

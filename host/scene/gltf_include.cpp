@@ -14,7 +14,8 @@ struct GltfIncludes::File {
     std::unique_ptr<gltf::PlacementState> state;
 };
 
-GltfIncludes::GltfIncludes(Scene& scene, bool instancing) : scene_(scene), instancing_(instancing) {}
+GltfIncludes::GltfIncludes(Scene& scene, bool instancing, AllowedPaths allowed)
+    : scene_(scene), instancing_(instancing), allowed_(std::move(allowed)) {}
 GltfIncludes::~GltfIncludes() = default;
 
 GltfIncludes::Key GltfIncludes::key(const std::filesystem::path& file, const GltfInclude& include) {
@@ -36,7 +37,7 @@ void GltfIncludes::append(const std::filesystem::path& file, const GltfInclude& 
     if (!f) f = std::make_unique<File>();
     const bool first = !f->doc;
     if (first) {
-        f->doc = std::make_unique<gltf::Document>(gltf::readDocument(file));
+        f->doc = std::make_unique<gltf::Document>(gltf::readDocument(file, allowed_));
         scene_.warnings.insert(scene_.warnings.end(), f->doc->warnings.begin(), f->doc->warnings.end());
         f->state = std::make_unique<gltf::PlacementState>(
             gltf::PlacementState{gltf::MaterialMapper(*f->doc, scene_, include.material)});

@@ -2,6 +2,7 @@
 // list (glTF 2.0 sec. 3.7.2 "Meshes"). Strips and fans are converted to triangle lists.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "scene/gltf_parts.h"
 #include "scene/scene_json_parts.h"
@@ -194,6 +195,14 @@ void appendPrimitive(const Document& doc, std::size_t mesh, std::size_t primitiv
             if (!hidden && !finite(&pos[i].x, 3)) {
                 positions.fail("element " + std::to_string(i) +
                                " is outside the range of 32-bit floats once placed by its node, relative to the camera");
+            }
+            const double reach = std::max({std::abs(double(pos[i].x)), std::abs(double(pos[i].y)), std::abs(double(pos[i].z))});
+            if (!hidden && !(reach <= kMaxSceneCoordinate)) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%.3g", reach);
+                positions.fail("element " + std::to_string(i) + " reaches " + text +
+                               " from the camera once placed by its node: its coordinates overflow 32-bit floats " +
+                               "(every vertex must lie within +-1e38 of the camera, float's largest value being 3.4e38)");
             }
         }
     }

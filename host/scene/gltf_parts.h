@@ -1,5 +1,6 @@
 // The pieces of the glTF loader (gltf.h), one file each. Internal to host/scene.
 //   gltf_document.cpp   the file -> tinygltf::Model (GLB checks, file access, image decoding, extensions)
+//   gltf_uri.cpp        the buffers' and images' uris, checked and resolved before tinygltf reads them
 //   gltf_compression.cpp EXT_meshopt_compression and KHR_draco_mesh_compression, decoded to plain buffers
 //   gltf_accessor.cpp   validated accessor reads (strides, sparse, normalized integers)
 //   gltf_mesh.cpp       primitives -> world-space triangles, vertex attributes, lights
@@ -20,6 +21,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
+#include "scene/file_references.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
 
@@ -42,9 +44,25 @@ void warnOnce(Scene& scene, std::string warning);
 
 /// Read a .gltf or .glb (by content: GLB starts with "glTF"), its buffers and images (decoded to
 /// RGBA8 with stb_image). Refuses a malformed GLB container, JSON nested deeper than 256 levels,
-/// a missing or unreadable buffer or image, a glTF major version other than 2, and any extension in
+/// a buffer or image uri outside the file's folder and `allowed` (file_references.h), a missing or
+/// unreadable buffer or image, a glTF major version other than 2, and any extension in
 /// extensionsRequired that vkpath does not implement; warns about one only in extensionsUsed.
-Document readDocument(const std::filesystem::path& file);
+Document readDocument(const std::filesystem::path& file, const AllowedPaths& allowed = {});
+
+/// One external file of a glTF document: the file to read and the place for messages
+/// ("buffer 2: uri \"x.bin\"", the uri as the file writes it).
+struct ExternalFile {
+    std::filesystem::path file;  ///< canonical (file_references.h resolveReference)
+    std::string place;
+};
+/// Every buffer and image uri of the document's JSON text that names a file (not a data: URI),
+/// keyed by the path tinygltf 2.7 will ask its file callbacks for (base + "/" + its decoding of the
+/// uri). Each uri is checked first: valid percent-encoding, a relative path or a file:///path URI
+/// (no other scheme), resolving inside base (the document's folder, canonical) or `allowed`.
+/// Throws InputError "<file>: buffer|image <i>: uri \"<uri>\": <problem>". Returns nothing for
+/// text that is not a JSON object (tinygltf reports it).
+std::map<std::string, ExternalFile> externalFiles(std::string_view json, const std::string& file,
+                                                  const std::filesystem::path& base, const AllowedPaths& allowed);
 
 /// What rewriteForTinygltf changed in a file that uses compressed meshes, for the decoders to undo.
 struct Rewritten {

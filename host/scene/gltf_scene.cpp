@@ -310,7 +310,7 @@ std::string nodePlace(const Document& doc, std::size_t node) {
 namespace vkp {
 
 Scene loadSceneGltf(const std::filesystem::path& file, const GltfOptions& options) {
-    gltf::Document doc = gltf::readDocument(file);
+    gltf::Document doc = gltf::readDocument(file, options.allowPaths);
     Scene scene;
     scene.path = file;
     scene.warnings = std::move(doc.warnings);

@@ -4,9 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <system_error>
 
 #include "core/errors.h"
 
@@ -82,97 +79,6 @@ std::string formatError(const std::string& file, std::string_view where, std::st
         if (u < 0x20 || u == 0x7f) c = ' ';
     }
     return line;
-}
-
-std::string readTextFile(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec)) throw InputError(name + ": cannot read: is a directory");
-    if (!std::filesystem::exists(file, ec)) throw InputError(name + ": cannot read: no such file");
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name + ": cannot read: cannot open the file (permissions?)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(name + ": cannot read: read error");
-    return text.str();
-}
-
-Json parseDocument(const std::string& text, const std::string& file) {
-    // The callback follows the parser to know the JSON pointer of what it is reading: duplicate keys
-    // (which nlohmann would silently resolve) and numbers outside double range are reported there.
-    struct Frame {
-        bool array = false;
-        std::size_t index = 0;  // arrays: index of the element being read
-        std::string key;        // objects: key of the member being read
-        std::set<std::string> keys;
-    };
-    std::vector<Frame> frames;
-    std::string duplicate;  // pointer of the first duplicate key
-    auto path = [&frames]() {
-        std::string p;
-        for (const auto& f : frames) {
-            p += '/';
-            p += f.array ? std::to_string(f.index) : escapePointerToken(f.key);
-        }
-        return p;
-    };
-    auto elementDone = [&frames]() {
-        if (!frames.empty() && frames.back().array) ++frames.back().index;
-    };
-    // Nesting deeper than any scene needs is refused while parsing: later recursive code (dump()
-    // in messages) could otherwise overflow the stack on a document like [[[[...]]]].
-    struct TooDeep {};
-    constexpr std::size_t kMaxNesting = 256;
-    using Event = nlohmann::detail::parse_event_t;
-    Json::parser_callback_t callback = [&](int, Event event, Json& parsed) {
-        if ((event == Event::object_start || event == Event::array_start) && frames.size() >= kMaxNesting) {
-            throw TooDeep{};
-        }
-        switch (event) {
-        case Event::object_start: frames.push_back({}); break;
-        case Event::array_start: frames.push_back({true}); break;
-        case Event::key: {
-            auto& f = frames.back();
-            f.key = parsed.get<std::string>();
-            if (!f.keys.insert(f.key).second && duplicate.empty()) duplicate = path();
-            break;
-        }
-        case Event::object_end:
-        case Event::array_end:
-            frames.pop_back();
-            elementDone();
-            break;
-        case Event::value: elementDone(); break;
-        }
-        return true;
-    };
-    Json doc;
-    try {
-        doc = Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/false);
-    } catch (const Json::parse_error& e) {
-        // e.byte: 1-based offset of the last character read. Line and column from it (1-based).
-        std::size_t pos = e.byte == 0 ? 0 : std::min<std::size_t>(e.byte - 1, text.size());
-        std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + pos, '\n'));
-        std::size_t lineStart = text.rfind('\n', pos == 0 ? 0 : pos - 1);
-        lineStart = (lineStart == std::string::npos || pos == 0) ? 0 : lineStart + 1;
-        std::size_t column = pos - lineStart + 1;
-        std::string what = e.what();
-        std::size_t col = what.find("column ");
-        std::size_t cut = col == std::string::npos ? std::string::npos : what.find(": ", col);
-        if (cut != std::string::npos) what = what.substr(cut + 2);
-        else if (std::size_t b = what.find("] "); b != std::string::npos) what = what.substr(b + 2);
-        throw InputError(formatError(file, "line " + std::to_string(line) + ", column " + std::to_string(column),
-                                     "invalid JSON: " + what));
-    } catch (const TooDeep&) {
-        throw InputError(formatError(file, path(), "nested deeper than " + std::to_string(kMaxNesting) + " levels"));
-    } catch (const Json::exception& e) {
-        // out_of_range.406: a number too large for a double. The parser stopped inside it.
-        std::string what = e.what();
-        if (std::size_t b = what.find("] "); b != std::string::npos) what = what.substr(b + 2);
-        throw InputError(formatError(file, path(), what));
-    }
-    if (!duplicate.empty()) throw InputError(formatError(file, duplicate, "duplicate key"));
-    return doc;
 }
 
 bool Range::contains(double x) const {
@@ -337,7 +243,16 @@ std::string Object::choice(std::string_view key, std::initializer_list<std::stri
     return v ? v->choice(choices) : std::string(def);
 }
 
+std::vector<std::pair<std::string, Value>> Object::members() {
+    allKnown_ = true;
+    std::vector<std::pair<std::string, Value>> out;
+    out.reserve(v_.json().size());
+    for (const auto& [k, member] : v_.json().items()) out.emplace_back(k, Value(member, v_.child(k), v_.file()));
+    return out;
+}
+
 void Object::finish() const {
+    if (allKnown_) return;
     for (const auto& [k, unused] : v_.json().items()) {
         (void)unused;
         if (std::find(known_.begin(), known_.end(), k) == known_.end()) {

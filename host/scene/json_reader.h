@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,9 +36,6 @@ std::string formatError(const std::string& file, std::string_view where, std::st
 /// Parse text as JSON. Refuses invalid JSON with "<file>: line L, column C: invalid JSON: ...",
 /// duplicate keys and numbers out of double range with "<file>: <pointer>: ...".
 Json parseDocument(const std::string& text, const std::string& file);
-
-/// Read a whole file; InputError "<file>: cannot read: <reason>" if it cannot be.
-std::string readTextFile(const std::filesystem::path& file);
 
 /// An allowed interval of numbers, closed or open at either end.
 struct Range {
@@ -133,12 +131,17 @@ public:
     std::string choice(std::string_view key, std::initializer_list<std::string_view> choices,
                        std::string_view def);
 
+    /// Every member in file order, as (key, value); every key is then known (for an object whose
+    /// keys the file chooses, such as "materials"). Linear in the number of members.
+    std::vector<std::pair<std::string, Value>> members();
+
     /// Refuse the first key (in file order) that was never asked for.
     void finish() const;
 
 private:
     Value v_;
     std::vector<std::string> known_;  // in the order they were asked for (for messages)
+    bool allKnown_ = false;           // members() was called
 };
 
 }  // namespace vkp::json

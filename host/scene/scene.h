@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "scene/file_references.h"
 #include "shared/kinds.h"
 
 namespace vkp {
@@ -282,6 +283,10 @@ struct SceneJsonOptions {
     /// The image size a scene without "camera" is framed for (its framing camera, as a glTF file
     /// without one gets): one of them alone makes a square; neither: kGltfDefaultImageSide square.
     std::optional<std::uint32_t> width, height;
+    /// --allow-path: folders besides the JSON file's own that its included glTF files and its
+    /// environment map may be in (file_references.h); an included glTF file's buffers and images
+    /// may be in its own folder or these.
+    AllowedPaths allowPaths;
 };
 
 /// Load a scene in vkpath's JSON format (scenes/README.md). Throws InputError with one line
@@ -319,6 +324,15 @@ void forEachShape(const Scene& scene, F&& f) {
     for (const InstancedMesh& m : scene.meshes)
         for (const Shape& s : m.shapes) f(s);
 }
+
+/// Largest |coordinate| a loader places, relative to the camera (Scene::origin): the BVH computes
+/// boxes and box centres in float (lo + hi must not overflow 3.4e38), so every shape's bounding box
+/// must lie within +-1e38 of the camera. The loaders refuse a shape beyond it, naming it.
+inline constexpr double kMaxSceneCoordinate = 1e38;
+
+/// The largest |coordinate| of s's bounding box, computed in double (no overflow): a sphere's
+/// centre +- radius, a quad's four corners, a triangle's vertices.
+double shapeReach(const Shape& s);
 
 /// Every component of p is finite (a position that fits a float).
 inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }

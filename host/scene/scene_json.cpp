@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/input_file.h"
 #include "scene/gltf.h"
 #include "scene/json_reader.h"
 #include "scene/scene.h"
@@ -106,13 +107,11 @@ Material readMaterial(const std::string& name, const json::Value& v) {
 
 void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index) {
     json::Object o = v.object();
-    for (const auto& [name, unused] : v.json().items()) {
-        (void)unused;
+    for (const auto& [name, value] : o.members()) {
         const std::uint32_t i = static_cast<std::uint32_t>(scene.materials.size());
-        scene.materials.push_back(readMaterial(name, o.required(name)));
+        scene.materials.push_back(readMaterial(name, value));
         index.emplace(name, i);
     }
-    o.finish();
 }
 
 }  // namespace scenejson
@@ -141,7 +140,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
         if (render) scene.render = scenejson::readRender(*render);
         std::map<std::string, std::uint32_t> index;
         if (materials) scenejson::readMaterials(*materials, scene, index);
-        scenejson::readObjects(objects, index, options.instancing, scene);
+        scenejson::readObjects(objects, index, options, scene);
         return scene;
     };
     Scene scene;
@@ -169,13 +168,13 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     if (environment) {  // directions only: the same in every frame, and the map is read once
         if (scene.render.background != glm::vec3(0.0f))
             environment->fail("cannot be combined with a non-zero render/background (the map replaces it)");
-        scene.environment = scenejson::readEnvironment(*environment, file);
+        scene.environment = scenejson::readEnvironment(*environment, file, options.allowPaths);
     }
     return scene;
 }
 
 Scene loadSceneJson(const std::filesystem::path& file, const SceneJsonOptions& options) {
-    return parseSceneJson(json::readTextFile(file), file, options);
+    return parseSceneJson(readInputFile(file), file, options);
 }
 
 }  // namespace vkp

@@ -7,7 +7,7 @@ namespace vkp::scenejson {
 
 using json::Range;
 
-Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile) {
+Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile, const AllowedPaths& allowed) {
     json::Object o = v.object();
     Environment env;
     const json::Value fileValue = o.required("file");
@@ -17,8 +17,11 @@ Environment readEnvironment(const json::Value& v, const std::filesystem::path& s
     env.rotateY = o.number("rotate_y", Range::any(), 0.0f);
     o.finish();
 
+    std::string problem;
+    (void)resolveReference(sceneFile.parent_path(), name, allowed, problem);
+    if (!problem.empty()) fileValue.fail(problem);
     const std::filesystem::path path(name);
-    const std::filesystem::path file = path.is_absolute() ? path : sceneFile.parent_path() / path;
+    const std::filesystem::path file = path.is_absolute() ? path : sceneFile.parent_path() / path;  // as messages name it
     try {
         const float strength = env.strength, rotateY = env.rotateY;
         env = readEnvironmentMap(file, strength, rotateY);

@@ -2,6 +2,7 @@
 // triangles, included glTF files and punctual lights, moved to world space by their "transform",
 // and the light list.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -140,6 +141,12 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
             (w.type == ShapeType::Sphere && !(w.radius > 0.0f))) {
             v.fail("the transformed " + type + " does not fit 32-bit floats relative to the camera (overflow or underflow)");
         }
+        if (const double reach = shapeReach(w); !(reach <= kMaxSceneCoordinate)) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", reach);
+            v.fail("the " + type + " reaches " + text + " from the camera: its coordinates overflow 32-bit floats " +
+                   "(its bounding box must lie within +-1e38 of the camera, float's largest value being 3.4e38)");
+        }
         if (w.type == ShapeType::Quad && parallelOrZero(w.p1, w.p2)) {
             o.required("transform").fail("makes the " + type + " degenerate (u x v = 0 in 32-bit floats)");
         }
@@ -224,14 +231,17 @@ std::filesystem::path includePath(const std::string& name, const Scene& scene) {
 /// glTF file's default scene, file relative to the JSON file, placed by transform (after the
 /// file's own node transforms); "material" replaces every material of the file. A problem inside
 /// the file is one line naming the JSON file and object, then the glTF file and its part.
-void readGltfObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index, Scene& scene,
-                    GltfIncludes& includes) {
+void readGltfObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
+                    const AllowedPaths& allowed, Scene& scene, GltfIncludes& includes) {
     json::Object o = v.object();
     o.choice("type", {"gltf"});
     const json::Value fileValue = o.required("file");
     const std::string name = fileValue.string();
     if (name.empty()) fileValue.fail("must not be empty");
-    const std::filesystem::path file = includePath(name, scene);
+    std::string problem;
+    (void)resolveReference(scene.path.parent_path(), name, allowed, problem);
+    if (!problem.empty()) fileValue.fail(problem);
+    const std::filesystem::path file = includePath(name, scene);  // as the messages name it
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) {
         fileValue.fail("cannot read " + file.string() + ": " +
@@ -281,13 +291,13 @@ void expectIncludes(const json::Value& v, const std::map<std::string, std::uint3
 
 }  // namespace
 
-void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, bool instancing,
-                 Scene& scene) {
-    GltfIncludes includes(scene, instancing);
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
+                 const SceneJsonOptions& options, Scene& scene) {
+    GltfIncludes includes(scene, options.instancing, options.allowPaths);
     expectIncludes(v, index, scene, includes);
     for (const json::Value& item : v.array()) {
         if (isGltfObject(item)) {
-            readGltfObject(item, index, scene, includes);
+            readGltfObject(item, index, options.allowPaths, scene, includes);
             continue;
         }
         if (isPunctualObject(item)) {

@@ -26,12 +26,13 @@ RenderSettings readRender(const json::Value& v);
 void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index);
 /// "objects": appends world-space shapes and the light list; included glTF files through
 /// GltfIncludes (each file read once; with instancing, meshes drawn twice or more stored once).
-void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index, bool instancing,
-                 Scene& scene);
+/// Included files must resolve inside the scene's folder or options.allowPaths (file_references.h).
+void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
+                 const SceneJsonOptions& options, Scene& scene);
 
-/// "environment": file (resolved against sceneFile's folder, read with core/image_io), strength,
-/// rotate_y. Image problems are reported at /environment/file.
-Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile);
+/// "environment": file (resolved against sceneFile's folder, and inside it or `allowed`; read with
+/// core/image_io), strength, rotate_y. Image problems are reported at /environment/file.
+Environment readEnvironment(const json::Value& v, const std::filesystem::path& sceneFile, const AllowedPaths& allowed);
 
 /// |a x b| <= 1e-6 |a| |b| (in double): a and b are parallel (to float precision) or one of them
 /// is zero (also true for NaN).

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "scene/scene.h"
@@ -11,6 +13,21 @@ float shapeArea(const Shape& s) {
     case ShapeType::Triangle: return 0.5f * glm::length(glm::cross(s.p1 - s.p0, s.p2 - s.p0));
     }
     return 0.0f;
+}
+
+}  // namespace vkp
+
+namespace vkp {
+
+double shapeReach(const Shape& s) {
+    auto reach = [](glm::dvec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); };
+    const glm::dvec3 p0(s.p0), p1(s.p1), p2(s.p2);
+    switch (s.type) {
+    case ShapeType::Sphere: return reach(p0) + std::abs(double(s.radius));
+    case ShapeType::Quad: return std::max({reach(p0), reach(p0 + p1), reach(p0 + p2), reach(p0 + p1 + p2)});
+    case ShapeType::Triangle: return std::max({reach(p0), reach(p1), reach(p2)});
+    }
+    return 0.0;
 }
 
 }  // namespace vkp

@@ -1,8 +1,11 @@
 #include "vk/instance.h"
 
-#include <algorithm>
+#include <dlfcn.h>
+#include <link.h>
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "core/errors.h"
 
@@ -30,6 +33,29 @@ DeviceKind kindOf(vk::PhysicalDeviceType t) {
         case vk::PhysicalDeviceType::eCpu: return DeviceKind::Cpu;
         default: return DeviceKind::Other;
     }
+}
+/// Checks that the Vulkan loader vk::raii::Context will open has the entry points the Context calls
+/// as soon as it is made: a library named libvulkan.so.1 without them (an empty stub on
+/// LD_LIBRARY_PATH, a broken install) would otherwise be a call through a null pointer. Opens the
+/// library as Vulkan-Hpp's DynamicLoader does (libvulkan.so, then libvulkan.so.1). Throws
+/// DeviceError "no Vulkan loader: ..." when there is none, "no usable Vulkan loader: ..." when
+/// it lacks an entry point.
+void checkLoader() {
+    void* lib = dlopen("libvulkan.so", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) throw DeviceError("no Vulkan loader: libvulkan.so.1 could not be opened (apt-get install libvulkan1 mesa-vulkan-drivers)");
+    std::string name = "libvulkan.so.1";
+    link_map* map = nullptr;
+    if (dlinfo(lib, RTLD_DI_LINKMAP, &map) == 0 && map && map->l_name && *map->l_name) name = map->l_name;
+    std::string missing;
+    auto gipa = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(lib, "vkGetInstanceProcAddr"));
+    if (!gipa) missing = "vkGetInstanceProcAddr";
+    for (const char* f : {"vkCreateInstance", "vkEnumerateInstanceLayerProperties", "vkEnumerateInstanceExtensionProperties"})
+        if (missing.empty() && !gipa(nullptr, f)) missing = f;
+    dlclose(lib);
+    if (!missing.empty())
+        throw DeviceError("no usable Vulkan loader: " + name + " has no " + missing +
+                          " (is a stub or another library named libvulkan on LD_LIBRARY_PATH? apt-get install libvulkan1)");
 }
 }  // namespace
 
@@ -76,6 +102,7 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
 }
 
 VulkanInstance::VulkanInstance(bool validate) : validate_(validate), log_(std::make_unique<ValidationLog>()) {
+    checkLoader();
     try {
         context_ = std::make_unique<vk::raii::Context>();
     } catch (const std::exception&) {

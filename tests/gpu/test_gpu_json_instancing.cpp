@@ -30,6 +30,7 @@ Scene includesScene(bool instancing, std::uint32_t seed) {
         R"({"type":"gltf","file":")" + f + R"(","material":"grey","transform":[{"scale":[-0.45,0.45,0.45]},{"translate":[-1.2,0.05,1.6]}]}]})";
     SceneJsonOptions o;
     o.instancing = instancing;
+    o.allowPaths = {scenesDir()};  // the scene is in the scratch folder, instances.gltf in scenes/gltf
     Scene s = parseSceneJson(text, scratchDir("gpu_json_instancing") / "scene.json", o);
     s.render.seed = seed;
     return s;

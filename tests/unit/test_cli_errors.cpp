@@ -2,6 +2,7 @@
 // output file written or clobbered. None of these cases reaches the device.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 
 #include "run_process.h"
@@ -95,9 +96,13 @@ TEST_F(CliErrors, LightOptionsAndTheBlackSceneWarning) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("env:map"), std::string::npos) << r.out;
-    // A JSON scene of nothing but a glTF file: no camera, no materials (the framing camera).
+    // A JSON scene of nothing but a glTF file: no camera, no materials (the framing camera). The
+    // file is in another folder: --allow-path names it.
     write("wrap.json", R"({"objects": [{"type": "gltf", "file": ")" + scene + R"("}]})");
     r = run({"info", "wrap.json", "--background", "1"});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("wrap.json: /objects/0/file: resolves to "), std::string::npos) << r.err;
+    r = run({"info", "wrap.json", "--background", "1", "--allow-path", (scenesDir() / "gltf").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_NE(r.out.find("image        512x512"), std::string::npos) << r.out;
@@ -119,6 +124,40 @@ TEST_F(CliErrors, NoVulkanDriverIsExitCode2WithAFix) {
     EXPECT_EQ(i.exitCode, 0) << i.err;
     EXPECT_NE(i.out.find("variant      "), std::string::npos) << i.out;
     EXPECT_NE(i.out.find("device       none"), std::string::npos) << i.out;
+}
+
+// A device, a link to one or a FIFO as the scene: one line naming it, exit 1. Under a memory limit
+// and a time limit, so that a regression fails here (exit 124 or a bad_alloc) instead of reading
+// /dev/zero into all the memory there is.
+TEST_F(CliErrors, DevicesFifosAndLinksToThemAreRefused) {
+    std::filesystem::remove(dir / "zero.json");
+    std::filesystem::create_symlink("/dev/zero", dir / "zero.json");
+    std::filesystem::remove(dir / "fifo.json");
+    ASSERT_EQ(std::system(("mkfifo '" + (dir / "fifo.json").string() + "'").c_str()), 0);
+    for (const std::string scene : {"/dev/zero", "/dev/urandom", "zero.json", "fifo.json"}) {
+        const ProcessResult r = run({"info", scene}, "ulimit -v 2000000 && timeout 60");
+        EXPECT_EQ(r.exitCode, 1) << scene << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(scene + ": cannot read: not a regular file"), std::string::npos) << r.err;
+    }
+}
+
+// A "loader" without symbols (an empty libvulkan.so.1 on LD_LIBRARY_PATH): one line, exit 2, for
+// every command that opens Vulkan, and no output file.
+TEST_F(CliErrors, AStubVulkanLoaderIsExitCode2) {
+    const std::string env = std::string("LD_LIBRARY_PATH='") + VKPATH_STUB_VULKAN_DIR + "'";
+    ASSERT_TRUE(std::filesystem::exists(std::filesystem::path(VKPATH_STUB_VULKAN_DIR) / "libvulkan.so.1"));
+    std::filesystem::remove(dir / "out.png");
+    const std::string scene = (scenesDir() / "cornell-book3.json").string();
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"devices"}, {"render", scene, "--spp", "1", "-o", "out.png"}}) {
+        const ProcessResult r = run(args, env);
+        EXPECT_EQ(r.exitCode, 2) << args[0] << ": " << r.err;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("no usable Vulkan loader"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("libvulkan.so"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
 }
 
 TEST_F(CliErrors, HelpAndVersion) {

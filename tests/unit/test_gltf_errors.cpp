@@ -314,7 +314,15 @@ TEST(GltfErrors, EachBrokenFileGivesItsOwnLine) {
              d["meshes"][0]["primitives"][0]["material"] = 0;
          },
          "material 0/alphaCutoff: must be finite as a 32-bit float (got 1e+300)"},
-        {"too_large_to_frame", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {3e38, 3e38, 3e38}; },
+        {"reach_by_node", [](Json& d, Bytes&) { d["nodes"][0]["scale"] = {2e38, 2e38, 2e38}; },
+         "accessor 0 (POSITION of mesh 0 (\"tri\") primitive 0): element 1 reaches 2e+38 from the camera once placed by its "
+         "node: its coordinates overflow 32-bit floats"},
+        {"too_large_to_frame",  // each vertex within 1e38 of the first node, the two copies 2e38 apart
+         [](Json& d, Bytes&) {
+             d["nodes"][0]["scale"] = {1e38, 1e38, 1e38};
+             d["nodes"].push_back({{"mesh", 0}, {"scale", {1e38, 1e38, 1e38}}, {"translation", {-1e38, 0, 0}}});
+             d["scenes"][0]["nodes"].push_back(1);
+         },
          "cameras: the file has no camera and its scene is too large to frame in 32-bit floats"},
         // Document level.
         {"required_extension", [](Json& d, Bytes&) { d["extensionsUsed"] = {"KHR_materials_variants"}; d["extensionsRequired"] = {"KHR_materials_variants"}; },

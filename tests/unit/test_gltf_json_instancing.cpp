@@ -62,6 +62,7 @@ std::string sceneText() {
 Scene load(bool instancing) {
     SceneJsonOptions o;
     o.instancing = instancing;
+    o.allowPaths = {test::scenesDir()};  // the scenes are written in the scratch folder, the files are in scenes/
     // Camera-relative, as loaded: the flattened and the instanced triangles are placed by the same double matrices.
     return parseSceneJson(sceneText(), test::scratchDir("gltf_json_instancing") / "scene.json", o);
 }
@@ -198,6 +199,7 @@ TEST(GltfJsonInstancing, OneIncludePerFileInstancesOnlyMeshesOfSeveralNodes) {
         R"({"camera":{"lookfrom":[0,3,20],"lookat":[0,0,0],"vup":[0,1,0],"vfov":40,"width":8,"height":8},)"
         R"("materials":{"m":{"type":"lambertian","albedo":[0.5,0.5,0.5]}},)"
         R"("objects":[{"type":"gltf","file":")" + instancesFile().string() + R"("}]})";
+    o.allowPaths = {test::scenesDir()};  // once.json is in the scratch folder, instances.gltf in scenes/
     const Scene once = vkp::test::inFileFrame(parseSceneJson(text, test::scratchDir("gltf_json_instancing") / "once.json", o));
     EXPECT_EQ(once.meshes.size(), 2u);
     EXPECT_EQ(once.instances.size(), 7u);
@@ -211,6 +213,7 @@ std::string errorOf(const std::string& objects, bool instancing) {
         R"("materials":{"m":{"type":"lambertian","albedo":[0.5,0.5,0.5]}},"objects":[)" + objects + "]}";
     SceneJsonOptions o;
     o.instancing = instancing;
+    o.allowPaths = {test::scenesDir()};  // the scenes are written in the scratch folder, the files are in scenes/
     try {
         parseSceneJson(text, test::scratchDir("gltf_json_instancing") / "errors.json", o);
     } catch (const InputError& e) {

@@ -212,6 +212,14 @@ std::vector<Case> cases() {
         // but 1e39 from the camera is not a float.
         {"far_from_camera", withObject(R"({"type":"triangle","v0":[0,0,0],"v1":[1e39,0,0],"v2":[0,1,0],"material":"m"})"),
          "/objects/0", "the transformed triangle does not fit 32-bit floats relative to the camera"},
+        // Inside float range, but a bounding box (and so the BVH's box centres) would overflow: named
+        // by the object's pointer (not by a shape index: a box before it is 6 shapes) and said as it is.
+        {"box_overflow", withObjects("[" + kSphere + R"(,{"type":"box","min":[0,0,0],"max":[1,1,1],"material":"m"},)" + kSphere + "," +
+                                     kSphere + "," + kSphere + "," + kSphere +
+                                     R"(,{"type":"sphere","center":[2e38,0,5],"radius":1,"material":"m"}])"),
+         "/objects/6", "the sphere reaches 2e+38 from the camera: its coordinates overflow 32-bit floats"},
+        {"quad_corner_overflow", withObject(R"({"type":"quad","Q":[9e37,0,0],"u":[9e37,0,0],"v":[0,1,0],"material":"m"})"),
+         "/objects/0", "the quad reaches 1.8e+38 from the camera: its coordinates overflow"},
         // environment (files relative to the scene's folder; none of these exist)
         {"env_type", withEnv("[]"), "/environment", "must be an object"},
         {"env_file_missing_key", withEnv(R"({"strength":1})"), "/environment/file", "missing required key"},

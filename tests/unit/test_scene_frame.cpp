@@ -113,9 +113,11 @@ TEST(SceneFrame, IncludedGltfFollowsTheJsonCamera) {
     for (auto& o : doc["objects"])
         if (o.contains("file")) o["file"] = (scenesDir() / "gltf" / o["file"].get<std::string>()).string();
     writeJsonFile(doc, dir / "include-abs.json");
-    const Scene absBase = loadSceneJson(dir / "include-abs.json");
+    SceneJsonOptions allow;  // the included files are in scenes/gltf, not beside include-abs.json
+    allow.allowPaths = {scenesDir() / "gltf"};
+    const Scene absBase = loadSceneJson(dir / "include-abs.json", allow);
     expectSamePositions(absBase, base, "include with absolute paths");
-    const Scene moved = loadSceneJson(movedJsonScene(dir / "include-abs.json", glm::dvec3(1e7, 1e7, 1e7), 1.0, "frame_include_moved"));
+    const Scene moved = loadSceneJson(movedJsonScene(dir / "include-abs.json", glm::dvec3(1e7, 1e7, 1e7), 1.0, "frame_include_moved"), allow);
     expectSamePositions(moved, base, "include moved by 1e7");
     EXPECT_EQ(moved.origin, base.origin + glm::dvec3(1e7));
 }
