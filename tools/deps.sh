@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
 # With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh) and valgrind
 # (tools/instructions-per-sample.sh); with --reference also Blender (the `reference` tests); with
-# --farm also Slurm and munge (the `farm` test). Options combine.
+# --farm also Slurm and munge (the `farm` test); with --fuzz also clang and libFuzzer (tools/fuzz.sh).
+# Options combine.
 # Idempotent: does nothing (and needs no network) when everything is already installed.
 set -euo pipefail
 packages=(
@@ -19,7 +20,9 @@ for option in "$@"; do
     --reference) packages+=(blender) ;;
     # --farm: Slurm and munge for the `farm` test's one-node cluster (tools/slurm/cluster-up.sh).
     --farm) packages+=(slurmctld slurmd slurm-client munge) ;;
-    *) echo "deps: unknown option '$option' (--bench, --reference, --farm)" >&2; exit 1 ;;
+    # --fuzz: clang and libFuzzer for tools/fuzz.sh (the fuzz targets of tests/fuzz).
+    --fuzz) packages+=(clang libfuzzer-14-dev) ;;
+    *) echo "deps: unknown option '$option' (--bench, --reference, --farm, --fuzz)" >&2; exit 1 ;;
   esac
 done
 missing=()

@@ -56,6 +56,9 @@ ImageHeader readPng(std::span<const std::uint8_t> b) {
     }
 }
 
+/// SOF0-SOF15 but DHT (C4), JPG (C8) and DAC (CC).
+bool isFrameHeader(std::uint8_t marker) { return marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC; }
+
 ImageHeader readJpeg(std::span<const std::uint8_t> b) {
     ImageHeader h;
     h.format = "JPEG";
@@ -78,23 +81,62 @@ ImageHeader readJpeg(std::span<const std::uint8_t> b) {
                         " bytes, the data ends at byte " + std::to_string(n);
             return h;
         }
-        const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
-        if (sof) {
+        if (isFrameHeader(marker)) {
             if (length < 7) {
                 h.problem = "the frame header at byte " + std::to_string(at) + " is too short";
                 return h;
             }
             h.height = std::uint32_t(b[at + 5]) << 8 | b[at + 6];
             h.width = std::uint32_t(b[at + 7]) << 8 | b[at + 8];
+            at += 2 + length;
             break;
         }
         at += 2 + length;
     }
-    // The compressed data follows; a complete file ends with the EOI marker (FF D9).
-    const std::uint8_t eoi[2] = {0xFF, 0xD9};
-    if (std::search(b.begin() + static_cast<std::ptrdiff_t>(at), b.end(), eoi, eoi + 2) == b.end())
-        h.problem = "truncated: no end-of-image marker (FF D9) after the frame header";
-    return h;
+    // The segments and scans after the frame header, up to the end-of-image marker (FF D9). A second
+    // frame header is refused: baseline and progressive JPEGs have one (several make a
+    // hierarchical JPEG, which stb_image does not decode), and Debian's stb_image (2.27, git
+    // 2022-09-08) reads out of bounds on a progressive file with two (found by tools/fuzz.sh).
+    for (;;) {
+        if (at + 2 > n) {
+            h.problem = "truncated: no end-of-image marker (FF D9) after the frame header";
+            return h;
+        }
+        if (b[at] != 0xFF) {  // extraneous bytes before a marker: skipped, as libjpeg and stb_image do
+            ++at;
+            continue;
+        }
+        const std::uint8_t marker = b[at + 1];
+        if (marker == 0xFF) {  // fill byte
+            ++at;
+            continue;
+        }
+        if (marker == 0xD9) return h;  // end of image
+        if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) {  // restart markers, TEM: no length
+            at += 2;
+            continue;
+        }
+        if (isFrameHeader(marker)) {
+            h.problem = "a second frame header (SOF) at byte " + std::to_string(at) + " (hierarchical JPEG is not supported)";
+            return h;
+        }
+        if (at + 4 > n) {
+            h.problem = "truncated: the data ends at byte " + std::to_string(n) + " inside the marker at byte " + std::to_string(at);
+            return h;
+        }
+        const std::size_t length = std::size_t(b[at + 2]) << 8 | b[at + 3];
+        if (length < 2 || at + 2 + length > n) {
+            h.problem = "truncated: the segment at byte " + std::to_string(at) + " needs " + std::to_string(2 + length) +
+                        " bytes, the data ends at byte " + std::to_string(n);
+            return h;
+        }
+        at += 2 + length;
+        if (marker == 0xDA) {  // start of scan: entropy-coded data up to the next marker
+            while (at < n && !(b[at] == 0xFF && at + 1 < n && b[at + 1] != 0x00 && !(b[at + 1] >= 0xD0 && b[at + 1] <= 0xD7))) {
+                at += (b[at] == 0xFF) ? 2 : 1;  // FF 00 is a stuffed FF, FF D0-D7 a restart marker
+            }
+        }
+    }
 }
 
 }  // namespace

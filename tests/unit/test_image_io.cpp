@@ -14,6 +14,7 @@
 
 #include "core/errors.h"
 #include "core/image.h"
+#include "core/image_header.h"
 #include "core/image_io.h"
 #include "test_paths.h"
 
@@ -357,5 +358,26 @@ TEST(ImageIo, EmptyImageIsAProgrammingError) {
     EXPECT_FALSE(fs::exists(scratch("empty.pfm")));
 }
 
+}  // namespace
+}  // namespace vkp
+
+namespace vkp {
+namespace {
+// Found by tools/fuzz.sh: a progressive JPEG with a second frame header makes Debian's stb_image
+// read out of bounds (SEGV). The header reader refuses it before stb_image sees it, naming the
+// marker; the file stays in the fuzz corpus, which the default run replays (fuzz.replay_image).
+TEST(ImageHeaderFuzzFindings, ASecondJpegFrameHeaderIsRefused) {
+    const std::filesystem::path f = std::filesystem::path(VKPATH_SOURCE_DIR) / "tests/fuzz/corpus/image/crash-stb-progressive-two-sof.jpg";
+    std::ifstream in(f, std::ios::binary);
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(bytes.empty());
+    const ImageHeader h = readImageHeader(bytes);
+    EXPECT_EQ(h.format, "JPEG");
+    EXPECT_NE(h.problem.find("a second frame header (SOF) at byte"), std::string::npos) << h.problem;
+    // A well-formed progressive JPEG (one frame header) still passes.
+    std::ifstream ok(std::filesystem::path(VKPATH_SOURCE_DIR) / "tests/fuzz/corpus/image/progressive.jpg", std::ios::binary);
+    const std::vector<std::uint8_t> good((std::istreambuf_iterator<char>(ok)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(readImageHeader(good).problem, "");
+}
 }  // namespace
 }  // namespace vkp
