@@ -10,35 +10,17 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/exr_guards.h"
 #include "core/image_formats.h"
 
 namespace vkp::detail {
 namespace {
 
-/// Owns the error string tinyexr may allocate.
-struct ExrError {
-    const char* msg = nullptr;
-    ~ExrError() {
-        if (msg) FreeEXRErrorMessage(msg);
-    }
-    std::string text(int code) const {
-        return (msg ? std::string(msg) : std::string("error")) + " (tinyexr code " + std::to_string(code) + ")";
-    }
-};
+using exr::ExrError;
+using exr::HeaderGuard;
+using exr::ImageGuard;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) { throw InputError(name + ": " + what); }
-
-struct HeaderGuard {
-    EXRHeader h;
-    HeaderGuard() { InitEXRHeader(&h); }
-    ~HeaderGuard() { FreeEXRHeader(&h); }
-};
-
-struct ImageGuard {
-    EXRImage i;
-    ImageGuard() { InitEXRImage(&i); }
-    ~ImageGuard() { FreeEXRImage(&i); }
-};
 
 }  // namespace
 

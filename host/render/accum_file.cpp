@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/exr_guards.h"
 #include "core/input_file.h"
 
 namespace vkp {
@@ -55,24 +56,9 @@ std::string keyAttributeName(const std::string& entry) {
     return n;
 }
 
-/// Owns what tinyexr allocates.
-struct ExrError {
-    const char* msg = nullptr;
-    ~ExrError() {
-        if (msg) FreeEXRErrorMessage(msg);
-    }
-    std::string text() const { return msg ? std::string(msg) : std::string("error"); }
-};
-struct HeaderGuard {
-    EXRHeader h;
-    HeaderGuard() { InitEXRHeader(&h); }
-    ~HeaderGuard() { FreeEXRHeader(&h); }
-};
-struct ImageGuard {
-    EXRImage i;
-    ImageGuard() { InitEXRImage(&i); }
-    ~ImageGuard() { FreeEXRImage(&i); }
-};
+using exr::ExrError;
+using exr::HeaderGuard;
+using exr::ImageGuard;
 
 std::uint64_t parseU64(const std::filesystem::path& path, const std::string& attr, const std::string& v) {
     std::uint64_t x = 0;

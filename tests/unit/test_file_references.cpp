@@ -49,7 +49,8 @@ std::string triangleBin() {
 }
 
 struct FileReferences : ::testing::Test {
-    fs::path root = test::scratchDir("file_references");
+    // A folder per case: CTest may run the cases of this binary at the same time.
+    fs::path root = test::scratchDir("file_references") / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::path inner = root / "scene";   // the referring files' folder
     fs::path outer = root / "outside";  // a folder beside it
     void SetUp() override {
