@@ -203,8 +203,10 @@ void main() {
         if (ended) {
             // Samples are added in sample order, so any split over dispatches gives the same sums.
             vec3 L = s.radiance;
-            if (any(isnan(L)) || any(isinf(L)) || any(greaterThan(L, vec3(MAX_SAMPLE_RADIANCE)))) {
-                nonfinite++;  // a sum of such samples (or of their squares) could overflow
+            // NaN, Inf, or so large that a sum of such samples (or of their squares) could overflow:
+            // dropped and counted (Inf is above the bound too).
+            if (any(isnan(L)) || any(greaterThan(abs(L), vec3(MAX_SAMPLE_RADIANCE)))) {
+                nonfinite++;
             } else if (adaptive && ((push.batch.x + k) & 3u) == 3u) {
                 dSum += vec4(L, 1.0f);  // decision stream: steers adaptive sampling, not in the image
                 dSq += vec4(L * L, 0.0f);

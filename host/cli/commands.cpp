@@ -3,7 +3,6 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
-#include <csignal>
 #include <cstdlib>
 #include <memory>
 #include <optional>
@@ -144,13 +143,12 @@ void checkDumpDir(const std::filesystem::path& dir) {
     if (ec) throw InputError(dir.string() + ": --dump-dir cannot be created: " + ec.message());
     checkCanCreateFile(dir / dumpFileName(0, ImageFormat::Png));
 }
+}  // namespace
 
-/// Says that a signal came before the first sample; the exit code for it.
 int stoppedEarly(int signo) {
-    std::fprintf(stderr, "vkpath: %s before the first sample: nothing written\n", signo == SIGINT ? "SIGINT" : "SIGTERM");
+    std::fprintf(stderr, "vkpath: %s before the first sample: nothing written\n", signalName(signo));
     return exitCodeForSignal(signo);
 }
-}  // namespace
 
 int runRender(const CliArgs& a, Clock::time_point processStart) {
     installInterruptHandlers();
@@ -221,7 +219,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     const double samples = double(r.samplesTaken);
     const double rs = std::max(r.renderSeconds, 1e-9);
     if (r.signal)
-        std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", r.signal == SIGINT ? "SIGINT" : "SIGTERM", r.spp, job.session.spp);
+        std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", signalName(r.signal), r.spp, job.session.spp);
     if (r.firstSample)
         std::fprintf(stderr, "vkpath: samples [%u:%u) of every pixel\n", r.firstSample, r.spp);
     std::fprintf(stderr,

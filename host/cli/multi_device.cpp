@@ -1,12 +1,12 @@
 #include "cli/multi_device.h"
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
 #include <thread>
 
+#include "cli/commands.h"
 #include "core/errors.h"
 #include "core/interrupt.h"
 #include "render/accum_file.h"
@@ -70,10 +70,7 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
         std::fprintf(stderr, "vkpath: %s, %ux%u, samples [%u:%u) on %zu devices: %s\n", a.scene.string().c_str(), arrays.width,
                      arrays.height, first, end, devices.size(), list.c_str());
     }
-    if (const int sig = interruptSignal()) {
-        std::fprintf(stderr, "vkpath: %s before the first sample: nothing written\n", sig == SIGINT ? "SIGINT" : "SIGTERM");
-        return exitCodeForSignal(sig);
-    }
+    if (const int sig = interruptSignal()) return stoppedEarly(sig);
     const std::uint32_t count = std::uint32_t(renderers.size());
     std::uint32_t next = first;
     double perRound = 0.0;  // seconds per sample per device in a round, measured
@@ -128,7 +125,7 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     std::vector<AtomicWrite> more;
     if (!o.partial.empty()) more.push_back({o.partial, [&](std::ostream& out) { encodeAccumFile(out, o.partial, o.key, total); }});
     if (next > first) writeImages(total.pixelSums().mean(), o.outputs, wo, std::move(more));
-    if (signal) std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", signal == SIGINT ? "SIGINT" : "SIGTERM", next, end);
+    if (signal) std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", signalName(signal), next, end);
     std::fprintf(stderr, "vkpath: %u spp on %u devices in %.2f s (rendering %.2f s): %.3f M samples/s, %.3f M rays/s, %llu non-finite samples dropped\n",
                  next - first, count, since(processStart), renderSeconds, double(total.samplesTaken) / std::max(renderSeconds, 1e-9) / 1e6,
                  double(total.counters.rays) / std::max(renderSeconds, 1e-9) / 1e6, static_cast<unsigned long long>(total.counters.nonfinite));

@@ -176,7 +176,12 @@ private:
 
 }  // namespace
 
-std::string atomicTempPrefix(const fs::path& dest) { return "." + dest.filename().string() + ".tmp-"; }
+std::string atomicTempPrefix(const fs::path& dest) {
+    std::string prefix = ".";  // appended piecewise: GCC 12's -Wrestrict misfires on "." + string&&
+    prefix += dest.filename().string();
+    prefix += ".tmp-";
+    return prefix;
+}
 
 namespace {
 void writeInto(const fs::path& dest, TempFile& tmp, const std::function<void(std::ostream&)>& write) {

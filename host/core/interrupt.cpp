@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdio>
 #include <cstring>
 
 namespace vkp {
@@ -51,6 +52,14 @@ void installInterruptHandlers() {
 }
 
 int interruptSignal() { return g_signal.load(); }
+
+const char* signalName(int signo) {
+    if (signo == SIGINT) return "SIGINT";
+    if (signo == SIGTERM) return "SIGTERM";
+    static thread_local char other[32];
+    std::snprintf(other, sizeof other, "signal %d", signo);
+    return other;
+}
 
 void resetInterruptForTests() { g_signal.store(0); }
 

@@ -14,6 +14,9 @@ void installInterruptHandlers();
 /// The number of the first SIGINT or SIGTERM received since installInterruptHandlers, or 0.
 int interruptSignal();
 
+/// "SIGINT", "SIGTERM", or "signal N" for another.
+const char* signalName(int signo);
+
 /// The conventional exit code of a process stopped by signal `signo`: 128 + signo (130 for
 /// SIGINT, 143 for SIGTERM).
 inline int exitCodeForSignal(int signo) { return 128 + signo; }

@@ -8,7 +8,14 @@
 namespace vkp {
 
 namespace {
-std::string range(const RenderState& s) { return "[" + std::to_string(s.firstSample) + ":" + std::to_string(s.nextSample) + ")"; }
+std::string range(const RenderState& s) {
+    std::string r = "[";  // appended piecewise: GCC 12's -Wrestrict misfires on "[" + string&&
+    r += std::to_string(s.firstSample);
+    r += ":";
+    r += std::to_string(s.nextSample);
+    r += ")";
+    return r;
+}
 }  // namespace
 
 RenderState addStates(const std::vector<const RenderState*>& states, std::uint32_t firstSample, std::uint32_t nextSample) {

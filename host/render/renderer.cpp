@@ -137,13 +137,9 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
         bb.sumSq = make(VKP_BINDING_ACCUM_SQ);
         bb.decision = make(VKP_BINDING_DECISION);  // 16-byte tokens without adaptive sampling
         bb.active = make(VKP_BINDING_ACTIVE);
-        if (adaptive()) {
-            const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, band.firstRow, band.rows);
-            bb.active->upload(list.data(), list.size() * 4);
-            bb.activeCount = std::uint32_t(list.size());
-        }
         impl_->bands.push_back(std::move(bb));
     }
+    if (adaptive()) uploadActiveLists();
     device.submitAndWait([&](vk::raii::CommandBuffer& cmd) {
         cmd.fillBuffer(impl_->counters().buffer(), 0, VK_WHOLE_SIZE, 0);
         for (Impl::BandBuffers& bb : impl_->bands)
@@ -244,14 +240,41 @@ void Renderer::submitSamples(std::uint32_t count) {
     }
 }
 
+namespace {
+/// Reads one per-pixel binding of every band into `out` (kStateFloatsPerPixel floats per pixel).
+template <class Bands>
+void downloadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, std::vector<float>& out) {
+    for (auto& bb : bands)
+        bb.at(binding).download(out.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
+                                std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+}
+template <class Bands>
+void uploadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, const std::vector<float>& in) {
+    for (auto& bb : bands)
+        bb.at(binding).upload(in.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
+                              std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+}
+
+/// Combines each pixel's compensated pairs (kStateFloatsPerPixel floats: hi.rgba, lo.rgba;
+/// shared/compensated_sum.h) into 4 doubles per pixel.
+void combinePairs(const std::vector<float>& raw, std::vector<double>& out) {
+    const std::size_t pixels = raw.size() / kStateFloatsPerPixel;
+    out.resize(pixels * 4);
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (std::size_t c = 0; c < 4; ++c) out[4 * i + c] = double(raw[8 * i + c]) + double(raw[8 * i + 4 + c]);
+}
+}  // namespace
+
 void Renderer::updateAdaptive() {
-    std::vector<float> decision(std::size_t(width_) * height_ * 8);
-    for (Impl::BandBuffers& bb : impl_->bands)
-        bb.decision->download(decision.data() + std::size_t(bb.band.firstRow) * width_ * 8,
-                              std::size_t(bb.band.rows) * width_ * 8 * sizeof(float));
+    std::vector<float> decision(std::size_t(width_) * height_ * kStateFloatsPerPixel);
+    downloadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, decision);
     const std::uint32_t before = active_;
     active_ = updateActivePixels(activeMask_, decision, width_, height_, adaptiveThreshold_, done_);
     if (active_ == before || active_ == 0) return;
+    uploadActiveLists();
+}
+
+void Renderer::uploadActiveLists() {
     for (Impl::BandBuffers& bb : impl_->bands) {
         const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, bb.band.firstRow, bb.band.rows);
         if (!list.empty()) bb.active->upload(list.data(), list.size() * 4);
@@ -270,21 +293,6 @@ void Renderer::jumpTo(std::uint32_t next) {
     done_ = next;
 }
 
-namespace {
-/// Reads one per-pixel binding of every band into `out` (kStateFloatsPerPixel floats per pixel).
-template <class Bands>
-void downloadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, std::vector<float>& out) {
-    for (auto& bb : bands)
-        bb.at(binding).download(out.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
-                                std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
-}
-template <class Bands>
-void uploadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, const std::vector<float>& in) {
-    for (auto& bb : bands)
-        bb.at(binding).upload(in.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
-                              std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
-}
-}  // namespace
 
 RenderState Renderer::state() {
     RenderState st;
@@ -332,13 +340,8 @@ void Renderer::restore(const RenderState& st, const std::string& what) {
     if (adaptive()) {
         uploadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, st.decision);
         activeMask_ = st.active;
-        active_ = 0;
-        for (std::uint8_t a : activeMask_) active_ += a != 0;
-        for (Impl::BandBuffers& bb : impl_->bands) {
-            const std::vector<std::uint32_t> list = activePixelList(activeMask_, width_, height_, bb.band.firstRow, bb.band.rows);
-            if (!list.empty()) bb.active->upload(list.data(), list.size() * 4);
-            bb.activeCount = std::uint32_t(list.size());
-        }
+        active_ = std::uint32_t(std::count_if(activeMask_.begin(), activeMask_.end(), [](std::uint8_t a) { return a != 0; }));
+        uploadActiveLists();
     }
 }
 
@@ -346,14 +349,8 @@ PixelSums RenderState::pixelSums() const {
     PixelSums s;
     s.width = width;
     s.height = height;
-    const std::size_t n = std::size_t(pixels());
-    s.sum.resize(n * 4);
-    s.sumSq.resize(n * 4);
-    for (std::size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 4; ++c) {
-            s.sum[4 * i + c] = double(sum[8 * i + c]) + double(sum[8 * i + 4 + c]);
-            s.sumSq[4 * i + c] = double(sumSq[8 * i + c]) + double(sumSq[8 * i + 4 + c]);
-        }
+    combinePairs(sum, s.sum);
+    combinePairs(sumSq, s.sumSq);
     return s;
 }
 
@@ -361,19 +358,11 @@ PixelSums Renderer::readSums() {
     PixelSums s;
     s.width = width_;
     s.height = height_;
-    const std::size_t pixels = std::size_t(width_) * height_;
-    std::vector<float> raw(pixels * 8);
-    // Combines each pixel's (hi, lo) pair in double (shared/compensated_sum.h), band by band.
-    auto combine = [&](std::uint32_t binding, std::vector<double>& out) {
-        for (Impl::BandBuffers& bb : impl_->bands)
-            bb.at(binding).download(raw.data() + std::size_t(bb.band.firstRow) * width_ * 8,
-                                    std::size_t(bb.band.rows) * width_ * 8 * sizeof(float));
-        out.resize(pixels * 4);
-        for (std::size_t i = 0; i < pixels; ++i)
-            for (int c = 0; c < 4; ++c) out[4 * i + c] = double(raw[8 * i + c]) + double(raw[8 * i + 4 + c]);
-    };
-    combine(VKP_BINDING_ACCUM_SUM, s.sum);
-    combine(VKP_BINDING_ACCUM_SQ, s.sumSq);
+    std::vector<float> raw(std::size_t(width_) * height_ * kStateFloatsPerPixel);  // reused for both
+    downloadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SUM, width_, raw);
+    combinePairs(raw, s.sum);
+    downloadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SQ, width_, raw);
+    combinePairs(raw, s.sumSq);
     return s;
 }
 

@@ -121,6 +121,8 @@ private:
     /// environment, the Nth submission of samples fails as a lost device makes it fail.
     std::uint32_t injectDeviceLostAt_ = 0, submissions_ = 0;
     void updateAdaptive();
+    /// Adaptive sampling: each band's list of active pixels from activeMask_, uploaded.
+    void uploadActiveLists();
 };
 
 }  // namespace vkp

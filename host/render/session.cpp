@@ -2,8 +2,6 @@
 
 #include <unistd.h>
 
-#include <csignal>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -70,7 +68,7 @@ std::vector<std::pair<std::string, std::string>> imageMetadata(std::uint32_t fir
     m.emplace_back("vkpath.version", VKPATH_VERSION);
     m.emplace_back("vkpath.spp", std::to_string(next - first));
     m.emplace_back("vkpath.samples", std::to_string(first) + ":" + std::to_string(next));
-    if (signal) m.emplace_back("vkpath.interrupted", signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : std::to_string(signal));
+    if (signal) m.emplace_back("vkpath.interrupted", signalName(signal));
     return m;
 }
 
@@ -107,9 +105,10 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     const bool powersOfTwo = o.onCheckpoint && o.checkpointPowersOfTwo && o.dumpEvery == 0;
     std::uint32_t lastCheckpoint = 0;
     // Reads the image back, hands it to onCheckpoint (and returns it for dumps or outputs).
-    auto checkpoint = [&](std::uint32_t spp) {
+    // `state`: the render's state when already read back (the image is then made from it).
+    auto checkpoint = [&](std::uint32_t spp, const RenderState* state) {
         const auto t0 = Clock::now();
-        Image img = renderer.image();
+        Image img = state ? state->pixelSums().mean() : renderer.image();
         if (o.onCheckpoint && spp != lastCheckpoint) {
             o.onCheckpoint(Checkpoint{spp, secondsSince(processStart), img});
             lastCheckpoint = spp;
@@ -166,7 +165,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
             const bool dump = o.dumpEvery && now % o.dumpEvery == 0;
             const bool power = powersOfTwo && (now & (now - 1)) == 0;
             if (dump || power) {
-                const Image img = checkpoint(now);
+                const Image img = checkpoint(now, nullptr);
                 if (dump) {
                     const auto t1 = Clock::now();
                     writeDumps(img, o, now);
@@ -178,19 +177,19 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     }
     progress.finish();
     res.signal = interruptSignal();
-    const Image img = checkpoint(renderer.samplesDone());
+    // The partial and the checkpoint need the state; read the device once and make the image from it.
+    std::shared_ptr<const RenderState> state;
+    if (!o.partial.empty() || !o.checkpoint.empty()) state = std::make_shared<const RenderState>(renderer.state());
+    const Image img = checkpoint(renderer.samplesDone(), state.get());
     for (std::size_t i = 0; i < img.pixelCount(); ++i)
         res.nonfinitePixels += !(std::isfinite(img.rgb[3 * i]) && std::isfinite(img.rgb[3 * i + 1]) && std::isfinite(img.rgb[3 * i + 2]));
     const auto t1 = Clock::now();
     if (o.dumpEvery && !res.signal) writeDumps(img, o, renderer.samplesDone());
     // The outputs, the partial and the checkpoint: all or none.
     std::vector<AtomicWrite> states;
-    if (!o.partial.empty() || !o.checkpoint.empty()) {
-        auto state = std::make_shared<RenderState>(renderer.state());
-        for (const std::filesystem::path& p : {o.partial, o.checkpoint})
-            if (!p.empty()) states.push_back({p, [state, &o, p](std::ostream& out) { encodeAccumFile(out, p, o.key, *state); }});
-        res.stateWrites += !o.checkpoint.empty();
-    }
+    for (const std::filesystem::path& p : {o.partial, o.checkpoint})
+        if (!p.empty()) states.push_back({p, [state, &o, p](std::ostream& out) { encodeAccumFile(out, p, o.key, *state); }});
+    res.stateWrites += !o.checkpoint.empty();
     WriteOptions wo;
     wo.exposure = o.exposure;
     wo.metadata = imageMetadata(first, renderer.samplesDone(), res.signal);

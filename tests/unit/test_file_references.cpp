@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
+#include "input_error.h"
 #include "test_paths.h"
 
 namespace {
@@ -17,17 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace vkp;
 
-/// The message of the InputError that f throws ("" and a test failure if it throws none).
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError";
-    return {};
-}
+using test::inputErrorOf;
 
 void write(const fs::path& p, const std::string& bytes) {
     fs::create_directories(p.parent_path());
@@ -78,7 +69,7 @@ TEST_F(FileReferences, GltfUrisOutsideTheFolderAreRefusedUnlessAllowed) {
     for (const std::string uri : {"../outside/tri.bin", "../../../../../../../../etc/hostname", "/etc/hostname",
                                   "file:///etc/hostname", "sub/../../outside/tri.bin"}) {
         const fs::path file = gltf(uri);
-        const std::string e = errorOf([&] { loadSceneGltf(file); });
+        const std::string e = inputErrorOf([&] { loadSceneGltf(file); });
         EXPECT_EQ(e.rfind(file.string() + ": buffer 0: uri \"" + uri + "\"" + outside, 0), 0u) << e;
         EXPECT_NE(e.find("--allow-path"), std::string::npos) << e;
     }
@@ -87,7 +78,7 @@ TEST_F(FileReferences, GltfUrisOutsideTheFolderAreRefusedUnlessAllowed) {
     EXPECT_EQ(loadSceneGltf(gltf("../outside/tri.bin"), allow).shapes.size(), 1u);
     EXPECT_EQ(loadSceneGltf(gltf("file://" + (outer / "tri.bin").string()), allow).shapes.size(), 1u);
     // Allowing one folder does not allow its neighbours.
-    const std::string e = errorOf([&] { loadSceneGltf(gltf("../../../../../../../../etc/hostname"), allow); });
+    const std::string e = inputErrorOf([&] { loadSceneGltf(gltf("../../../../../../../../etc/hostname"), allow); });
     EXPECT_NE(e.find(outside), std::string::npos) << e;
 }
 
@@ -97,7 +88,7 @@ TEST_F(FileReferences, SymbolicLinksAreFollowedBeforeTheCheck) {
     fs::create_symlink(outer, inner / "dir-out");
     EXPECT_EQ(loadSceneGltf(gltf("link-in.bin")).shapes.size(), 1u);
     for (const std::string uri : {"link-out.bin", "dir-out/tri.bin"}) {
-        const std::string e = errorOf([&] { loadSceneGltf(gltf(uri)); });
+        const std::string e = inputErrorOf([&] { loadSceneGltf(gltf(uri)); });
         EXPECT_NE(e.find("buffer 0: uri \"" + uri + "\": resolves to " + (fs::canonical(outer) / "tri.bin").string()), std::string::npos) << e;
     }
     GltfOptions allow;
@@ -114,13 +105,13 @@ TEST_F(FileReferences, UrisAreQuotedAsWrittenWithTheirPlace) {
                           Case{"file://host/tri.bin", "a file: URI must be file:///path"},
                           Case{"missing.bin", "cannot read"}}) {
         const fs::path file = gltf(c.uri);
-        const std::string e = errorOf([&] { loadSceneGltf(file); });
+        const std::string e = inputErrorOf([&] { loadSceneGltf(file); });
         EXPECT_EQ(e.rfind(file.string() + ": buffer 0: uri \"" + c.uri + "\": " + c.message, 0), 0u) << e;
     }
     // An image's place is its index.
     write(inner / "i.gltf", R"({"asset": {"version": "2.0"}, "images": [{"uri": "ok.png"}, {"uri": "/etc/passwd"}]})");
     write(inner / "ok.png", "");
-    const std::string e = errorOf([&] { loadSceneGltf(inner / "i.gltf"); });
+    const std::string e = inputErrorOf([&] { loadSceneGltf(inner / "i.gltf"); });
     EXPECT_EQ(e.rfind((inner / "i.gltf").string() + ": image 1: uri \"/etc/passwd\": resolves to /etc/passwd", 0), 0u) << e;
 }
 
@@ -130,9 +121,9 @@ TEST_F(FileReferences, JsonIncludesAndEnvironmentMapsFollowTheSameRule) {
     const std::string camera = R"("camera": {"lookfrom": [0,0,5], "lookat": [0,0,0], "vfov": 40, "width": 8, "height": 8})";
     write(inner / "inc.json", "{" + camera + R"(, "objects": [{"type": "gltf", "file": "../outside/t.gltf"}]})");
     write(inner / "env.json", "{" + camera + R"(, "objects": [], "environment": {"file": "../outside/sky.pfm"}})");
-    const std::string i = errorOf([&] { loadSceneJson(inner / "inc.json"); });
+    const std::string i = inputErrorOf([&] { loadSceneJson(inner / "inc.json"); });
     EXPECT_EQ(i.rfind((inner / "inc.json").string() + ": /objects/0/file: resolves to " + (fs::canonical(outer) / "t.gltf").string(), 0), 0u) << i;
-    const std::string e = errorOf([&] { loadSceneJson(inner / "env.json"); });
+    const std::string e = inputErrorOf([&] { loadSceneJson(inner / "env.json"); });
     EXPECT_EQ(e.rfind((inner / "env.json").string() + ": /environment/file: resolves to ", 0), 0u) << e;
     SceneJsonOptions allow;
     allow.allowPaths = {outer};
@@ -141,7 +132,7 @@ TEST_F(FileReferences, JsonIncludesAndEnvironmentMapsFollowTheSameRule) {
     // The included file's own buffer is beside it: its folder is the one that counts.
     write(inner / "up.json", "{" + camera + R"(, "objects": [{"type": "gltf", "file": "sub/t.gltf"}]})");
     write(inner / "sub" / "t.gltf", triangleGltf("../../outside/tri.bin"));
-    const std::string u = errorOf([&] { loadSceneJson(inner / "up.json"); });
+    const std::string u = inputErrorOf([&] { loadSceneJson(inner / "up.json"); });
     EXPECT_NE(u.find("/objects/0: "), std::string::npos) << u;
     EXPECT_NE(u.find("t.gltf: buffer 0: uri \"../../outside/tri.bin\": resolves to "), std::string::npos) << u;
 }

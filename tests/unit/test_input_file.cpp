@@ -13,6 +13,7 @@
 #include "core/input_file.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
+#include "input_error.h"
 #include "test_paths.h"
 
 namespace {
@@ -20,17 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace vkp;
 
-/// The message of the InputError that f throws ("" and a test failure if it throws none).
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError";
-    return {};
-}
+using test::inputErrorOf;
 
 struct InputFile : ::testing::Test {
     fs::path dir = test::scratchDir("input_file");
@@ -69,17 +60,17 @@ TEST_F(InputFile, RefusesDevicesFifosAndLinksToThemInOneLine) {
                               link("zero-link.json", "/dev/zero"), link("link-to-link.json", dir / "zero-link.json"),
                               fifo("fifo.json")}) {
         if (!fs::exists(p)) continue;
-        EXPECT_EQ(errorOf([&] { readInputFile(p, 1 << 20); }), p.string() + notRegular);
+        EXPECT_EQ(inputErrorOf([&] { readInputFile(p, 1 << 20); }), p.string() + notRegular);
     }
 }
 
 TEST_F(InputFile, MissingDirectoryAndTooLarge) {
     fs::remove(dir / "missing.json");
-    EXPECT_EQ(errorOf([&] { readInputFile(dir / "missing.json"); }), (dir / "missing.json").string() + ": cannot read: no such file");
-    EXPECT_EQ(errorOf([&] { readInputFile(dir); }), dir.string() + ": cannot read: is a directory");
+    EXPECT_EQ(inputErrorOf([&] { readInputFile(dir / "missing.json"); }), (dir / "missing.json").string() + ": cannot read: no such file");
+    EXPECT_EQ(inputErrorOf([&] { readInputFile(dir); }), dir.string() + ": cannot read: is a directory");
     const fs::path ten = write("ten.bin", "0123456789");
     EXPECT_EQ(readInputFile(ten, 10), "0123456789");
-    EXPECT_EQ(errorOf([&] { readInputFile(ten, 9); }), ten.string() + ": cannot read: larger than 9 bytes");
+    EXPECT_EQ(inputErrorOf([&] { readInputFile(ten, 9); }), ten.string() + ": cannot read: larger than 9 bytes");
 }
 
 // Each loader reads through the helper: a link to a device or a FIFO is refused by name, whatever
@@ -87,28 +78,28 @@ TEST_F(InputFile, MissingDirectoryAndTooLarge) {
 TEST_F(InputFile, EveryLoaderRefusesDevicesAndFifos) {
     const std::string notRegular = "not a regular file";
     const fs::path scene = link("dev.json", "/dev/null");
-    EXPECT_EQ(errorOf([&] { loadSceneJson(scene); }), scene.string() + ": cannot read: " + notRegular + " (a device, FIFO or socket)");
+    EXPECT_EQ(inputErrorOf([&] { loadSceneJson(scene); }), scene.string() + ": cannot read: " + notRegular + " (a device, FIFO or socket)");
     const fs::path gltf = link("dev.gltf", "/dev/null");
-    EXPECT_NE(errorOf([&] { loadSceneGltf(gltf); }).find(gltf.string() + ": cannot read: " + notRegular), std::string::npos);
+    EXPECT_NE(inputErrorOf([&] { loadSceneGltf(gltf); }).find(gltf.string() + ": cannot read: " + notRegular), std::string::npos);
     const fs::path image = link("dev.exr", "/dev/null");
-    EXPECT_NE(errorOf([&] { readImage(image); }).find(image.string() + ": cannot read: " + notRegular), std::string::npos);
+    EXPECT_NE(inputErrorOf([&] { readImage(image); }).find(image.string() + ": cannot read: " + notRegular), std::string::npos);
 
     // A glTF buffer, an environment map and an included glTF file of a JSON scene: FIFOs beside
     // the file that names them.
     fifo("fifo.bin");
     const fs::path withBuffer = write("buffer.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "fifo.bin", "byteLength": 4}]})");
-    const std::string b = errorOf([&] { loadSceneGltf(withBuffer); });
+    const std::string b = inputErrorOf([&] { loadSceneGltf(withBuffer); });
     EXPECT_NE(b.find("buffer.gltf: buffer 0: uri \"fifo.bin\": cannot read"), std::string::npos) << b;
     EXPECT_NE(b.find(notRegular), std::string::npos) << b;
     fifo("fifo.hdr");
     const std::string camera = R"("camera": {"lookfrom": [0,0,1], "lookat": [0,0,0], "vfov": 40, "width": 8, "height": 8})";
     const fs::path env = write("env.json", "{" + camera + R"(, "objects": [], "environment": {"file": "fifo.hdr"}})");
-    const std::string e = errorOf([&] { loadSceneJson(env); });
+    const std::string e = inputErrorOf([&] { loadSceneJson(env); });
     EXPECT_NE(e.find("env.json: /environment/file:"), std::string::npos) << e;
     EXPECT_NE(e.find(notRegular), std::string::npos) << e;
     fifo("fifo.gltf");
     const fs::path include = write("include.json", "{" + camera + R"(, "objects": [{"type": "gltf", "file": "fifo.gltf"}]})");
-    const std::string i = errorOf([&] { loadSceneJson(include); });
+    const std::string i = inputErrorOf([&] { loadSceneJson(include); });
     EXPECT_NE(i.find("include.json: /objects/0/file:"), std::string::npos) << i;
     EXPECT_NE(i.find(notRegular), std::string::npos) << i;
 }
