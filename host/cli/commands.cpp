@@ -130,9 +130,7 @@ std::size_t countShapes(const Scene& s, ShapeType t) {
     for (const Shape& sh : s.shapes) n += sh.type == t;
     return n;
 }
-}  // namespace
 
-namespace {
 /// The folder of progressive dumps can take files: created if missing (the only thing made before
 /// the render), refused when it is a file or cannot take one.
 void checkDumpDir(const std::filesystem::path& dir) {
