@@ -71,6 +71,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_WORKGROUP_X, "WORKGROUP_X", workgroupX, ""},  // the image does not depend on it
         {VKP_SPEC_WORKGROUP_Y, "WORKGROUP_Y", workgroupY, ""},
         {VKP_SPEC_HAS_ABSORPTION, "HAS_ABSORPTION", absorption, on(absorption, "absorption")},
+        {VKP_SPEC_HAS_SOLID_TEXTURES, "HAS_SOLID_TEXTURES", solidTextures, on(solidTextures, "json-textures")},
     };
     static_assert(std::size(table) == VKP_SPEC_COUNT, "one entry per specialization constant");
     std::vector<SpecConstant> out(std::begin(table), std::end(table));
@@ -108,7 +109,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         f.emitters = f.defocus = f.environment = f.environmentMap = true;
         f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = f.vertexColors = true;
         f.layers = gpu::LAYER_COAT | gpu::LAYER_SHEEN;
-        f.absorption = true;
+        f.absorption = f.solidTextures = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -131,6 +132,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         f.emitters |= m.emits() || m.type == MaterialType::DiffuseLight;
         if (m.type == MaterialType::Pbr) f.layers |= m.pbr.layers();
         f.absorption |= m.type == MaterialType::Dielectric && m.absorption != glm::vec3(0.0f);
+        f.solidTextures |= m.albedoTexture >= 0 || m.emitTexture >= 0;
     }
     f.defocus = scene.camera.defocusAngle > 0.0f;
     f.environment = hasEnvironmentLight(scene);

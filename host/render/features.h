@@ -37,6 +37,7 @@ struct Features {
     bool vertexColors = false;      ///< glTF COLOR_0 tints some MAT_PBR material (lib/surface.glsl)
     std::uint32_t layers = 0;       ///< gpu::LAYER_* over some MAT_PBR material (shared/layers.h)
     bool absorption = false;        ///< some dielectric absorbs inside (Material::absorption)
+    bool solidTextures = false;     ///< some material has a JSON texture (Material::albedoTexture, emitTexture)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

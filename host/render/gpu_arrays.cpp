@@ -104,8 +104,8 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     a.envDistribution = std::move(env.distribution);
     // Textures and vertex attributes (lib/surface.glsl): only what the variant reads is packed in
     // full; the others get a token texel.
-    if (a.features.textures || a.features.alpha) {
-        TexturePack tex = packTextures(scene);
+    if (a.features.textures || a.features.alpha || a.features.solidTextures) {
+        TexturePack tex = packTextures(scene, a.features.textures || a.features.alpha);
         a.texInfo = std::move(tex.info);
         a.texels = std::move(tex.texels);
     }

@@ -83,6 +83,10 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
         g.m0 = v4(m.albedo, bitsf(flags));
         g.m1 = v4(m.emit, param);
         if (m.type == MaterialType::Dielectric) g.m2 = v4(m.absorption, 0.0f);  // Beer-Lambert inside
+        if (m.albedoTexture >= 0 || m.emitTexture >= 0) {  // JSON textures (lib/solid_texture.glsl)
+            g.m0.w = bitsf(flags | gpu::MATF_SOLID_TEXTURE);
+            g.m2 = glm::vec4(bitsf(std::uint32_t(m.albedoTexture + 1)), bitsf(std::uint32_t(m.emitTexture + 1)), 0.0f, 0.0f);
+        }
         if (m.type == MaterialType::Pbr) {
             g.m0 = v4(glm::vec3(m.pbr.baseColor), bitsf(flags));
             g.m2 = v4(m.pbr.specularColor, m.pbr.specular);

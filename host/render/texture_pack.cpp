@@ -6,6 +6,8 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "render/perlin_table.h"
+#include "shared/solid_texture.h"
 #include "shared/texture_sample.h"
 
 namespace vkp {
@@ -139,9 +141,9 @@ bool sceneHasVertexAttributes(const Scene& scene) {
 
 bool sceneHasVertexColors(const Scene& scene) { return pbrTriangleHas(scene, TriangleVertices::kHasColor); }
 
-TexturePack packTextures(const Scene& scene) {
+TexturePack packTextures(const Scene& scene, bool materialRecords) {
     TexturePack out;
-    const std::uint32_t nm = std::uint32_t(scene.materials.size());
+    const std::uint32_t nm = materialRecords ? std::uint32_t(scene.materials.size()) : 0u;
     const std::uint32_t headerBase = 1 + kMatTexTexels * nm;
     out.info.assign(headerBase + scene.textures.size(), glm::uvec4(0));
     out.info[0] = glm::uvec4(headerBase, nm, std::uint32_t(scene.textures.size()), 0u);
@@ -184,7 +186,26 @@ TexturePack packTextures(const Scene& scene) {
         std::uint32_t flags = wrapFlag(tex.wrapS) | (wrapFlag(tex.wrapT) << 2u);
         if (tex.srgb) flags |= gpu::TEXF_SRGB;
         if (tex.nearest) flags |= gpu::TEXF_NEAREST;
+        if (img.rgb9e5) flags |= gpu::TEXF_RGB9E5;
         out.info[headerBase + t] = glm::uvec4(imageStart[tex.image], img.width, img.height, flags);
+    }
+    if (!scene.solidTextures.empty()) {
+        // JSON textures (shared/solid_texture.h): the origin and the Perlin table's place, the
+        // nodes, the table.
+        const std::uint32_t at = std::uint32_t(out.info.size());
+        const std::uint32_t nodes = std::uint32_t(scene.solidTextures.size());
+        const std::uint32_t tableAt = 1 + gpu::STEX_NODE_TEXELS * nodes;
+        out.info[0].w = at;
+        const glm::vec3 origin(scene.origin);
+        out.info.emplace_back(bits(origin.x), bits(origin.y), bits(origin.z), tableAt);
+        for (const SolidTexture& t : scene.solidTextures) {
+            const std::uint32_t a = t.kind == gpu::STEX_CHECKER ? t.even : t.kind == gpu::STEX_IMAGE ? t.texture : 0u;
+            const std::uint32_t b = t.kind == gpu::STEX_CHECKER ? t.odd : 0u;
+            out.info.emplace_back(t.kind, a, b, 0u);
+            out.info.emplace_back(bits(t.colour.x), bits(t.colour.y), bits(t.colour.z), bits(t.scale));
+        }
+        const std::vector<glm::uvec4> table = perlinTable();
+        out.info.insert(out.info.end(), table.begin(), table.end());
     }
     if (out.texels.empty()) out.texels.push_back(0u);
     return out;

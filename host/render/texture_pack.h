@@ -29,15 +29,18 @@ inline constexpr std::uint32_t kAttributeTexels = gpu::ATTR_TEXELS;
 inline constexpr std::uint32_t kNoTexture = gpu::TEX_NO_TEXTURE;
 
 struct TexturePack {
-    /// RGBA32UI: [0] = (first texture header, material count, texture count, 0); material m's record
-    /// at 1 + kMatTexTexels m; texture t's header (shared/texture_sample.h) at info[0].x + t.
+    /// RGBA32UI: [0] = (first texture header, material count, texture count, first texel of the
+    /// JSON textures or 0); material m's record at 1 + kMatTexTexels m; texture t's header
+    /// (shared/texture_sample.h) at info[0].x + t; then the JSON textures (Scene::solidTextures,
+    /// layout: shared/solid_texture.h), if any.
     std::vector<glm::uvec4> info;
     /// R32UI: every image's RGBA8 texels, one after the other (never empty: a token texel).
     std::vector<std::uint32_t> texels;
 };
 
-/// The textures and per-material texture records of `scene` (kernel materials: kernelMaterial).
-TexturePack packTextures(const Scene& scene);
+/// The textures and per-material texture records of `scene` (kernel materials: kernelMaterial);
+/// without materialRecords (a variant that reads only JSON textures) no record (material count 0).
+TexturePack packTextures(const Scene& scene, bool materialRecords = true);
 
 /// One kAttributeTexels record per BVH primitive (bvh.prims order, primShape): UVs, shading normals
 /// and tangents of mesh triangles (object space for an instanced mesh's); zeros (flags 0: no

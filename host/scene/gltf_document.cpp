@@ -1,8 +1,7 @@
 // Reading a glTF file into a tinygltf::Model, with the checks tinygltf 2.7 leaves out: the GLB
 // container (glTF 2.0 sec. 4.4), JSON nesting depth, file access only through our callbacks (so a
-// missing .bin or image is an error naming it), images decoded by stb_image (bounds of a GLB
+// missing .bin or image is an error naming it), images decoded by scene/ldr_image.h (bounds of a GLB
 // image's bufferView checked first), the asset version and the required / used extensions.
-#include <stb/stb_image.h>
 
 #include <algorithm>
 #include <cstring>
@@ -15,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
-#include "core/image_header.h"
+#include "scene/ldr_image.h"
 #include "core/input_file.h"
 #include "scene/gltf_parts.h"
 #include "scene/json_reader.h"
@@ -76,16 +75,6 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
     return false;
 }
 
-/// stb_image's reason, printable ASCII only (it may quote bytes of the file, e.g. a PNG chunk type).
-std::string stbReason() {
-    const char* r = stbi_failure_reason();
-    std::string out = r && *r ? "corrupt data (stb_image: \"" + std::string(r) + "\")" : "corrupt data (stb_image gives no reason)";
-    for (char& c : out) {
-        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-    }
-    return out;
-}
-
 /// tinygltf's image callback: decode with stb_image to RGBA8. A GLB image's bufferView is checked
 /// against its buffer here, before bytes is read (tinygltf 2.7 does not check it).
 bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
@@ -118,33 +107,15 @@ bool loadImage(tinygltf::Image* image, int index, std::string* err, std::string*
         image->image.clear();
         return true;
     }
-    // The header first: stb_image says "unknown image type" for a size beyond its own limits and
-    // little or nothing for a truncated file.
-    const ImageHeader header = readImageHeader({bytes, static_cast<std::size_t>(size)});
-    auto sizeProblem = [&](std::uint64_t w, std::uint64_t h, const std::string& format) {
-        return refuse(format + " of " + std::to_string(w) + "x" + std::to_string(h) + " pixels: each side must be in [1, " +
-                      std::to_string(kMaxImageSide) + "]");
-    };
-    if (!header.format.empty()) {
-        if (!header.problem.empty()) return refuse("cannot decode the " + header.format + ": " + header.problem);
-        if (header.width == 0 || header.height == 0 || header.width > kMaxImageSide || header.height > kMaxImageSide)
-            return sizeProblem(header.width, header.height, header.format);
-    }
-    const std::string format = header.format.empty() ? std::string("image") : header.format;
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp))
-        return refuse("cannot decode the " + format + " (PNG or JPEG expected): " + stbReason());
-    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
-        return sizeProblem(std::uint64_t(std::max(w, 0)), std::uint64_t(std::max(h, 0)), format);
-    unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
-    if (!pixels) return refuse("cannot decode the " + format + ": " + stbReason());
-    image->width = w;
-    image->height = h;
+    Rgba8Image decoded;
+    const std::string problem = decodeLdrImage({bytes, static_cast<std::size_t>(size)}, kMaxImageSide, decoded);
+    if (!problem.empty()) return refuse(problem);
+    image->width = int(decoded.width);
+    image->height = int(decoded.height);
     image->component = 4;
     image->bits = 8;
     image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image.assign(pixels, pixels + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
-    stbi_image_free(pixels);
+    image->image = std::move(decoded.rgba);
     return true;
 }
 

@@ -106,6 +106,12 @@ struct Material {
                                 ///< for every emitting lambertian (which always emits from both faces);
                                 ///< Pbr: glTF doubleSided (a single-sided emitter emits from its front only)
     PbrParams pbr;              ///< Pbr only
+    /// JSON scenes: a texture (index into Scene::solidTextures) gives the albedo (lambertian, metal;
+    /// clamped to [0,1]) or the emitted radiance (lambertian, diffuse_light) at each point; -1:
+    /// none, the constant above. With a texture, albedo and emit hold its upper bound
+    /// (solidTextureBound), so that emits() and the pick of lights by power see it.
+    std::int32_t albedoTexture = -1;
+    std::int32_t emitTexture = -1;
     bool emits() const { return emit.x > 0.0f || emit.y > 0.0f || emit.z > 0.0f; }
 };
 
@@ -155,11 +161,14 @@ struct MeshVertices {
 
 enum class TextureWrap : std::uint32_t { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
 
-/// A decoded image: RGBA, 8 bits per channel, rows top to bottom (as stored in the file).
+/// A decoded image: RGBA, 8 bits per channel, rows top to bottom (as stored in the file); or, for
+/// a high-dynamic-range image of a JSON texture (.hdr, .exr, .pfm), one packed RGB9E5 value per
+/// texel in the same 4 bytes (shared/texture_sample.h packRgb9e5; linear RGB, no alpha).
 struct TextureImage {
     std::string name;  ///< for messages: the file's image name or URI
     std::uint32_t width = 0, height = 0;
     std::vector<std::uint8_t> rgba8;  ///< width * height * 4 bytes
+    bool rgb9e5 = false;              ///< the texels are RGB9E5, not RGBA8
 };
 
 /// An image with its sampler, as one material slot uses it.
@@ -169,6 +178,25 @@ struct Texture {
     bool nearest = false;     ///< magFilter NEAREST (default: bilinear)
     bool srgb = false;        ///< colour data (base colour, emissive, specular colour): decode sRGB to linear
 };
+
+/// A texture of a JSON scene ("Ray Tracing: The Next Week", sec. 4-5; scenes/README.md
+/// "Textures"), evaluated by shaders/shared/solid_texture.h. Kinds are its STEX_*.
+struct SolidTexture {
+    std::uint32_t kind = gpu::STEX_SOLID;
+    glm::vec3 colour{1.0f};   ///< solid: the colour; the others: a factor (linear RGB, >= 0)
+    float scale = 1.0f;       ///< checker: the cell size (world units); noise kinds: the frequency
+    std::uint32_t even = 0;   ///< checker: index into Scene::solidTextures of the even cells' texture
+    std::uint32_t odd = 0;    ///< ... and of the odd cells'
+    std::uint32_t texture = 0;  ///< image: index into Scene::textures
+    std::string where;        ///< the JSON pointer it was read from (messages)
+};
+
+/// The largest value, per channel, that texture t of `scene` takes anywhere (images: their
+/// largest texel; checker: the larger of its two sides). Noise kinds use |noise| <= sqrt(3) (each
+/// corner's term is a unit gradient dotted with an offset of length <= sqrt(3), and the Hermite
+/// weights sum to 1), so |turb| <= 2 sqrt(3); marble <= 1.
+glm::vec3 solidTextureBound(const std::vector<SolidTexture>& textures, const std::vector<TextureImage>& images,
+                            const std::vector<Texture>& samplers, std::uint32_t t);
 
 /// The book's camera ("Ray Tracing in One Weekend", sec. 13).
 struct Camera {
@@ -268,6 +296,7 @@ struct Scene {
     MeshVertices vertices;                           ///< their per-vertex attributes
     std::vector<TextureImage> images;
     std::vector<Texture> textures;                   ///< TextureRef::texture indexes this
+    std::vector<SolidTexture> solidTextures;         ///< JSON textures (Material::albedoTexture, emitTexture)
     /// Problems that did not stop loading (e.g. an unsupported glTF extension that is only used),
     /// one line each, "<file>: <place>: <message>"; the command line prints them as warnings.
     std::vector<std::string> warnings;

@@ -9,6 +9,7 @@
 #include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_json_parts.h"
+#include "scene/solid_texture.h"
 #include "shared/gpu_types.h"
 
 namespace vkp {
@@ -73,7 +74,25 @@ RenderSettings readRender(const json::Value& v) {
 
 namespace {
 
-Material readMaterial(const std::string& name, const json::Value& v) {
+/// A colour or a texture at key (required unless def is given): sets colour and returns the texture
+/// index (-1: a plain colour).
+std::int32_t colourOrTexture(json::Object& o, std::string_view key, const json::Range& range, TextureReader& textures,
+                             glm::vec3& colour, std::optional<glm::vec3> def = std::nullopt) {
+    if (def && !o.has(key)) {
+        colour = *def;
+        return -1;
+    }
+    return textures.colourOrTexture(o.required(key), range, colour);
+}
+
+/// With an emission texture, Material::emit holds its bound (scene.h): what emits() and the pick
+/// of lights by power see.
+void boundEmission(const Scene& scene, Material& m) {
+    if (m.emitTexture >= 0)
+        m.emit = solidTextureBound(scene.solidTextures, scene.images, scene.textures, std::uint32_t(m.emitTexture));
+}
+
+Material readMaterial(const std::string& name, const json::Value& v, const Scene& scene, TextureReader& textures) {
     const Range unit = Range::closed(0.0, 1.0);
     json::Object o = v.object();
     Material m;
@@ -81,12 +100,13 @@ Material readMaterial(const std::string& name, const json::Value& v) {
     const std::string type = o.choice("type", {"lambertian", "metal", "dielectric", "diffuse_light"});
     if (type == "lambertian") {
         m.type = MaterialType::Lambertian;
-        m.albedo = o.vec3("albedo", unit);
-        m.emit = o.vec3("emit", kRadianceRange, glm::vec3(0.0f));
+        m.albedoTexture = colourOrTexture(o, "albedo", unit, textures, m.albedo);
+        m.emitTexture = colourOrTexture(o, "emit", kRadianceRange, textures, m.emit, glm::vec3(0.0f));
+        boundEmission(scene, m);
         m.twoSided = m.emits();  // an emitting lambertian surface emits from both faces
     } else if (type == "metal") {
         m.type = MaterialType::Metal;
-        m.albedo = o.vec3("albedo", unit);
+        m.albedoTexture = colourOrTexture(o, "albedo", unit, textures, m.albedo);
         m.fuzz = o.number("fuzz", unit, 0.0f);
     } else if (type == "dielectric") {
         m.type = MaterialType::Dielectric;
@@ -96,7 +116,8 @@ Material readMaterial(const std::string& name, const json::Value& v) {
         m.absorption = o.vec3("absorption", Range::closed(0.0, 1e30), glm::vec3(0.0f));
     } else {
         m.type = MaterialType::DiffuseLight;
-        m.emit = o.vec3("emit", kRadianceRange);
+        m.emitTexture = colourOrTexture(o, "emit", kRadianceRange, textures, m.emit);
+        boundEmission(scene, m);
         m.twoSided = o.boolean("two_sided", false);
     }
     o.finish();
@@ -105,11 +126,11 @@ Material readMaterial(const std::string& name, const json::Value& v) {
 
 }  // namespace
 
-void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index) {
+void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index, TextureReader& textures) {
     json::Object o = v.object();
     for (const auto& [name, value] : o.members()) {
         const std::uint32_t i = static_cast<std::uint32_t>(scene.materials.size());
-        scene.materials.push_back(readMaterial(name, value));
+        scene.materials.push_back(readMaterial(name, value, scene, textures));
         index.emplace(name, i);
     }
 }
@@ -124,6 +145,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
     const auto description = top.optional("description");
     const auto camera = top.optional("camera");
     const auto render = top.optional("render");
+    const auto textures = top.optional("textures");    // named textures (scenes/README.md "Textures")
     const auto materials = top.optional("materials");  // optional when no object names one
     const json::Value objects = top.required("objects");
     const auto environment = top.optional("environment");
@@ -139,7 +161,8 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
         scene.origin = origin;
         if (render) scene.render = scenejson::readRender(*render);
         std::map<std::string, std::uint32_t> index;
-        if (materials) scenejson::readMaterials(*materials, scene, index);
+        scenejson::TextureReader textureReader(scene, file, options.allowPaths, textures);
+        if (materials) scenejson::readMaterials(*materials, scene, index, textureReader);
         scenejson::readObjects(objects, index, options, scene);
         return scene;
     };

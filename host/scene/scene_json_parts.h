@@ -2,7 +2,11 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/json_reader.h"
 #include "scene/scene.h"
@@ -22,8 +26,37 @@ inline constexpr std::uint32_t kMaxDepth = 1024;
 Camera readCamera(const json::Value& v, glm::dvec3& origin);
 /// "render": spp, max_depth, background, seed (all optional).
 RenderSettings readRender(const json::Value& v);
+/// "textures" (name -> texture) and every colour that may be a texture (scenes/README.md
+/// "Textures"): appends Scene::solidTextures, and the images of image textures to Scene::images and
+/// Scene::textures, as materials use them. Image files must resolve inside the scene's folder or
+/// `allowed` (file_references.h); each is read once.
+class TextureReader {
+public:
+    TextureReader(Scene& scene, std::filesystem::path sceneFile, AllowedPaths allowed, std::optional<json::Value> named);
+    /// A colour ([r, g, b], each in range: sets colour, returns -1) or a texture (an object, or the
+    /// name of one in "textures"; its colours in range): its index into Scene::solidTextures
+    /// (colour set to 1).
+    std::int32_t colourOrTexture(const json::Value& v, const json::Range& range, glm::vec3& colour);
+
+private:
+    std::uint32_t texture(const json::Value& v, const json::Range& range);
+    std::uint32_t named(const json::Value& v, const json::Range& range);
+    std::uint32_t image(const json::Value& fileValue, bool nearest);
+    std::uint32_t add(SolidTexture t);
+
+    Scene& scene_;
+    std::filesystem::path sceneFile_;
+    AllowedPaths allowed_;
+    std::map<std::string, json::Value> named_;
+    std::map<std::pair<std::string, std::pair<double, double>>, std::uint32_t> done_;  // (name, range) -> texture
+    std::set<std::string> resolving_;                                                  // names being read (cycles)
+    std::map<std::pair<std::string, bool>, std::uint32_t> images_;                      // (path, nearest) -> Scene::textures
+    std::vector<std::uint32_t> depth_;  // per solid texture: checkers on its longest way to a colour
+};
+
 /// "materials": name -> material, appended in file order; index maps a name to its position.
-void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index);
+/// Colours that may be textures are read through `textures`.
+void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index, TextureReader& textures);
 /// "objects": appends world-space shapes and the light list; included glTF files through
 /// GltfIncludes (each file read once; with instancing, meshes drawn twice or more stored once).
 /// Included files must resolve inside the scene's folder or options.allowPaths (file_references.h).

@@ -69,8 +69,9 @@ GpuMaterial fetchMaterial(uint i) {
     m.m3 = vec4(0.0f);
     m.m4 = vec4(0.0f);
     m.m5 = vec4(0.0f);
-    // m2: MAT_PBR's specular, an absorbing dielectric's coefficient; other variants skip the fetch.
-    if (HAS_PBR || HAS_ABSORPTION) m.m2 = fetchF(uMaterials, base + 2);
+    // m2: MAT_PBR's specular, an absorbing dielectric's coefficient, JSON texture nodes; other
+    // variants skip the fetch.
+    if (HAS_PBR || HAS_ABSORPTION || HAS_SOLID_TEXTURES) m.m2 = fetchF(uMaterials, base + 2);
     if (HAS_PBR) {  // only MAT_PBR reads the rest
         m.m3 = fetchF(uMaterials, base + 3);
         if (HAS_LAYERS && (floatBitsToUint(m.m0.w) & MATF_LAYERED) != 0u) {

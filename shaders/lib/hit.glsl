@@ -4,6 +4,7 @@
 #ifndef VKP_HIT_GLSL
 #define VKP_HIT_GLSL
 #include "lib/bindings.glsl"
+#include "lib/solid_texture.glsl"
 #include "lib/surface.glsl"
 #include "lib/traverse.glsl"
 #include "shared/instance.h"
@@ -48,6 +49,7 @@ bool findSurface(vec3 o, vec3 d, out SurfaceHit h, inout uint passes) {
     h.ns = h.frontFace ? h.ng : -h.ng;
     h.m = fetchMaterial(primMaterial(h.p));
     h.nShade = surfaceAt(h.prim, h.p, abAttr, h.ns, d, primMaterial(h.p), h.m, inst, h.nCoat);
+    solidTexturesAt(h.p, h.ab, h.x, true, h.m);  // JSON textures (lib/solid_texture.glsl)
     return true;
 }
 

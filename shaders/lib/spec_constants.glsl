@@ -38,6 +38,9 @@ layout(constant_id = VKP_SPEC_LAYERS) const uint LAYERS = 0xffffffffu;
 // Some dielectric absorbs the light inside it (Beer-Lambert; GpuMaterial m2.xyz): paths carry
 // the absorption coefficient of the glass they travel in.
 layout(constant_id = VKP_SPEC_HAS_ABSORPTION) const bool HAS_ABSORPTION = true;
+// Some lambertian, metal or diffuse_light material takes its albedo or emission from a JSON
+// texture (checker, image, Perlin noise: shared/solid_texture.h, lib/solid_texture.glsl).
+layout(constant_id = VKP_SPEC_HAS_SOLID_TEXTURES) const bool HAS_SOLID_TEXTURES = true;
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;

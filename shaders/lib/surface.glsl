@@ -233,16 +233,9 @@ vec3 surfaceAt(uint prim, GpuPrim p, vec2 ab, vec3 ns, vec3 d, uint mi, inout Gp
 void emissiveTextureAt(uint prim, GpuPrim p, vec3 x, inout GpuMaterial m) {
     if (!HAS_TEXTURES || !HAS_EMITTERS || primKind(p) != PRIM_TRIANGLE) return;
     if ((floatBitsToUint(m.m0.w) & 15u) != MAT_DIFFUSE_LIGHT) return;
-    vec3 e1 = primEdge1(p);
-    vec3 e2 = primEdge2(p);
-    vec3 v = x - p.p0.xyz;
-    float d00 = dot(e1, e1);
-    float d01 = dot(e1, e2);
-    float d11 = dot(e2, e2);
-    float den = d00 * d11 - d01 * d01;
-    if (!(den > 0.0f)) return;
-    float a = (d11 * dot(v, e1) - d01 * dot(v, e2)) / den;  // x = v0 + a e1 + b e2
-    float b = (d00 * dot(v, e2) - d01 * dot(v, e1)) / den;
+    vec2 ab = primAbAt(p, x);  // x = v0 + a e1 + b e2
+    float a = ab.x;
+    float b = ab.y;
     int base = int(prim * ATTR_TEXELS);
     vec4 a0 = fetchF(uAttributes, base);
     vec4 a1 = fetchF(uAttributes, base + 1);

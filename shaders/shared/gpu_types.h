@@ -46,11 +46,14 @@ const uint GPU_NODE_EMPTY = 0xffffffffu;
 // ---- Materials (4 texels) ----------------------------------------------------------------------
 // m0.xyz: albedo (linear RGB; pbr: baseColorFactor), m0.w: bits of type (MAT_*) | flags (MATF_*)
 // m1.xyz: emitted radiance (linear RGB, W sr^-1 m^-2 in scene units), m1.w: fuzz (metal) or ior
-// m2 (pbr only): xyz = KHR_materials_specular specularColorFactor, w = specularFactor
+// m2 (pbr): xyz = KHR_materials_specular specularColorFactor, w = specularFactor; (dielectric):
+//    xyz = Beer-Lambert absorption inside; (with MATF_SOLID_TEXTURE): x, y = bits of the albedo's
+//    and the emission's texture node + 1 (0: the constant in m0 / m1; shared/solid_texture.h)
 // m3 (pbr only): x = metallicFactor, y = roughnessFactor, z = KHR_materials_transmission
 //    transmissionFactor when a transmissionTexture decides per hit (host transmissionTextured),
 //    else 0; w = KHR_materials_ior ior
-// The kernel fetches m2 and m3 only in variants with MAT_PBR (shaders/lib/bindings.glsl).
+// The kernel fetches m2 only in variants with MAT_PBR, absorption or JSON textures, and m3 only
+// with MAT_PBR (shaders/lib/bindings.glsl).
 // m4 (pbr with MATF_LAYERED): x = KHR_materials_clearcoat clearcoatFactor, y =
 //    clearcoatRoughnessFactor, z = KHR_materials_sheen sheenRoughnessFactor, w = 0
 // m5 (pbr with MATF_LAYERED): xyz = sheenColorFactor (linear RGB), w = 0

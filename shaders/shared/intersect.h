@@ -184,6 +184,23 @@ VKP_FN vec3 primHitPoint(GpuPrim p, vec3 o, vec3 d, float t, vec2 ab) {
     return p0 + ab.x * primEdge1(p) + ab.y * primEdge2(p);
 }
 
+/// The surface parameters (a, b) of a point x on flat primitive p, x = Q + a e1 + b e2 (least
+/// squares in the plane of e1, e2, so a point a little off the plane still gets the parameters of
+/// its projection); (0, 0) for a sphere or a degenerate primitive. Used where a point was sampled
+/// rather than hit (next-event estimation of a textured light).
+VKP_FN vec2 primAbAt(GpuPrim p, vec3 x) {
+    if (primKind(p) == PRIM_SPHERE) return vec2(0.0f);
+    vec3 e1 = primEdge1(p);
+    vec3 e2 = primEdge2(p);
+    vec3 v = x - vec3(p.p0.x, p.p0.y, p.p0.z);
+    float d00 = dot(e1, e1);
+    float d01 = dot(e1, e2);
+    float d11 = dot(e2, e2);
+    float den = d00 * d11 - d01 * d01;
+    if (!(den > 0.0f)) return vec2(0.0f);
+    return vec2((d11 * dot(v, e1) - d01 * dot(v, e2)) / den, (d00 * dot(v, e2) - d01 * dot(v, e1)) / den);
+}
+
 /// Geometric normal (unit, the primitive's front side: outward for spheres, e1 x e2 otherwise)
 /// at hit point x.
 VKP_FN vec3 primNormal(GpuPrim p, vec3 x) {

@@ -57,6 +57,7 @@
 #define VKP_SPEC_WORKGROUP_X 19            // uint: local_size_x (`--workgroup`)
 #define VKP_SPEC_WORKGROUP_Y 20            // uint: local_size_y
 #define VKP_SPEC_HAS_ABSORPTION 21         // bool: some dielectric absorbs inside (Beer-Lambert)
-#define VKP_SPEC_COUNT 22
+#define VKP_SPEC_HAS_SOLID_TEXTURES 22     // bool: some material has a JSON texture (shared/solid_texture.h)
+#define VKP_SPEC_COUNT 23
 
 #endif

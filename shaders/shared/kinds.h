@@ -29,6 +29,24 @@ const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
 const uint MATF_FRESNEL_EXACT = 32u;  // dielectric: exact Fresnel instead of Schlick
 const uint MATF_EMITS = 64u;          // emit != 0
 const uint MATF_LAYERED = 128u;       // pbr: a clear coat or sheen (GpuMaterial m4, m5; shared/layers.h)
+const uint MATF_SOLID_TEXTURE = 256u; // lambertian, metal, diffuse_light: JSON textures give the
+                                      // albedo or emission (GpuMaterial m2.xy; lib/solid_texture.glsl)
+
+// ---- Textures of JSON scenes (shared/solid_texture.h): node kinds and limits --------------------
+const uint STEX_SOLID = 0u;
+const uint STEX_CHECKER = 1u;
+const uint STEX_IMAGE = 2u;
+const uint STEX_NOISE = 3u;
+const uint STEX_TURBULENCE = 4u;
+const uint STEX_MARBLE = 5u;
+const uint STEX_KIND_COUNT = 6u;
+const uint STEX_NODE_TEXELS = 2u;
+const uint PERLIN_POINTS = 256u;     // the book's point_count
+const int TURBULENCE_OCTAVES = 7;    // the book's turb(p, 7)
+// Checkers nest (a checker's even or odd side may be a checker): at most this many checkers on
+// the way from a material's texture to the texture that colours the point (the loader refuses
+// deeper nesting, and cycles).
+const uint STEX_MAX_DEPTH = 16u;
 
 // ---- Layers over the glTF BRDF (specialization constant LAYERS; shared/layers.h) ----------------
 const uint LAYER_COAT = 1u;   // KHR_materials_clearcoat

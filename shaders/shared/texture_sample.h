@@ -5,7 +5,8 @@
 //
 // Storage (host/render/texture_pack.h): every image of a scene is packed as RGBA8 texels, one
 // uint per texel (R in the low byte), rows top to bottom, all images one after the other in one
-// texel buffer (lavapipe has no descriptor indexing). A texture header is one uvec4:
+// texel buffer (lavapipe has no descriptor indexing); a high-dynamic-range image of a JSON texture
+// as RGB9E5 texels (TEXF_RGB9E5), also one uint each. A texture header is one uvec4:
 //   x: first texel of the image, y: width, z: height, w: flags (TEXF_*).
 // glTF's UV (0,0) is the top left corner of the image, so texel row = v * height, no flip.
 //
@@ -23,6 +24,7 @@ const uint TEXF_WRAP_CLAMP = 1u;
 const uint TEXF_WRAP_MIRROR = 2u;
 const uint TEXF_SRGB = 16u;     // colour data: RGB decoded from sRGB to linear (alpha stays linear)
 const uint TEXF_NEAREST = 32u;  // magFilter NEAREST: the texel under the point, no filtering
+const uint TEXF_RGB9E5 = 64u;   // texels are RGB9E5 (linear RGB, alpha 1), not RGBA8
 
 /// One sRGB-encoded channel value c in [0,1] to linear (IEC 61966-2-1).
 VKP_FN float srgbToLinear(float c) {
@@ -39,6 +41,21 @@ VKP_FN vec4 texDecode(uint packed, bool srgb) {
         c.z = srgbToLinear(c.z);
     }
     return c;
+}
+
+/// An RGB9E5 texel (the shared-exponent format of EXT_texture_shared_exponent and Vulkan's
+/// E5B9G9R9: R in bits 0-8, G in 9-17, B in 18-26, exponent in 27-31, bias 15, 9-bit mantissas
+/// without a hidden bit) as linear RGB with alpha 1.
+VKP_FN vec4 rgb9e5Decode(uint packed) {
+    float scale = exp2(float(packed >> 27u) - 24.0f);  // 2^(e - 15 - 9)
+    return vec4(float(packed & 511u) * scale, float((packed >> 9u) & 511u) * scale,
+                float((packed >> 18u) & 511u) * scale, 1.0f);
+}
+
+/// A stored texel as floats: RGB9E5 or RGBA8 (sRGB-decoded where the flags say so).
+VKP_FN vec4 texTexel(uint packed, uint flags) {
+    if ((flags & TEXF_RGB9E5) != 0u) return rgb9e5Decode(packed);
+    return texDecode(packed, (flags & TEXF_SRGB) != 0u);
 }
 
 /// A texture coordinate reduced to a range where the wrap mode gives the same texels and where
@@ -86,13 +103,12 @@ VKP_FN vec4 texSample(uvec4 header, vec2 uv) {
     int h = int(header.z);
     uint ws = header.w & 3u;
     uint wt = (header.w >> 2u) & 3u;
-    bool srgb = (header.w & TEXF_SRGB) != 0u;
     float u = texReduce(uv.x, ws);
     float v = texReduce(uv.y, wt);
     if ((header.w & TEXF_NEAREST) != 0u) {
         int ix = texWrap(int(floor(u * float(w))), w, ws);
         int iy = texWrap(int(floor(v * float(h))), h, wt);
-        return texDecode(VKP_TEXEL_FETCH(base + uint(iy * w + ix)), srgb);
+        return texTexel(VKP_TEXEL_FETCH(base + uint(iy * w + ix)), header.w);
     }
     float fx;
     float fy;
@@ -102,10 +118,10 @@ VKP_FN vec4 texSample(uvec4 header, vec2 uv) {
     int xb = texWrap(x0 + 1, w, ws);
     int ya = texWrap(y0, h, wt);
     int yb = texWrap(y0 + 1, h, wt);
-    vec4 c00 = texDecode(VKP_TEXEL_FETCH(base + uint(ya * w + xa)), srgb);
-    vec4 c10 = texDecode(VKP_TEXEL_FETCH(base + uint(ya * w + xb)), srgb);
-    vec4 c01 = texDecode(VKP_TEXEL_FETCH(base + uint(yb * w + xa)), srgb);
-    vec4 c11 = texDecode(VKP_TEXEL_FETCH(base + uint(yb * w + xb)), srgb);
+    vec4 c00 = texTexel(VKP_TEXEL_FETCH(base + uint(ya * w + xa)), header.w);
+    vec4 c10 = texTexel(VKP_TEXEL_FETCH(base + uint(ya * w + xb)), header.w);
+    vec4 c01 = texTexel(VKP_TEXEL_FETCH(base + uint(yb * w + xa)), header.w);
+    vec4 c11 = texTexel(VKP_TEXEL_FETCH(base + uint(yb * w + xb)), header.w);
     vec4 top = c00 * (1.0f - fx) + c10 * fx;
     vec4 bottom = c01 * (1.0f - fx) + c11 * fx;
     return top * (1.0f - fy) + bottom * fy;
