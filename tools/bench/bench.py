@@ -204,11 +204,15 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     res["load_seconds"] = load_s
     log("  %s primitives, `vkpath info` in %.2f s" % (res["primitives"], load_s))
     wh = ["--width", W, "--height", H]
-    ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
-                                      args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
-                                      dict(env, LP_NUM_THREADS=args.ref_threads),
-                                      args.refresh_references)
-    res["reference"] = {k: ref[k] for k in ("spp", "sampler", "floor_relmse", "floor_rmse", "floor_mse", "cached")}
+    # The reference is what the curves and settings measure errors against; `--parts scaling,embree`
+    # (rates only) needs none.
+    ref, res["reference"] = None, None
+    if args.references_only or {"curves", "settings"} & args.parts:
+        ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
+                                          args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
+                                          dict(env, LP_NUM_THREADS=args.ref_threads),
+                                          args.refresh_references)
+        res["reference"] = {k: ref[k] for k in ("spp", "sampler", "floor_relmse", "floor_rmse", "floor_mse", "cached")}
     if args.references_only:
         return res, {}
     runs = os.path.join(workdir, name)

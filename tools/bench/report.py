@@ -75,16 +75,17 @@ def write_summary_md(path, run):
                                                                    s["skipped"]))
             continue
         r, sc = s["reference"], s.get("scaling")
+        ref_text = ("%d spp%s, %.2g / %.2g" % (r["spp"], " (cached)" if r["cached"] else "", r["floor_relmse"],
+                                               r["floor_rmse"]) if r else "— (not needed by these parts)")
         if sc is None:
-            L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | — | — |" % (
-                s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
-                r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
-                fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"])))
+            L.append("| %s | %s | %s | %.2f | %s | %s (JIT %s) | %s (JIT %s) | — | — |" % (
+                s["name"], s["size"], s["primitives"], s["load_seconds"], ref_text, fmt_s(s["ttfp"]["cold"]),
+                fmt_s(s["ttfp"]["cold_jit"]), fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"])))
             continue
-        L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
-            s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
-            r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
-            fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"]), sc["threads_ratio"], sc["variant_ratio"],
+        L.append("| %s | %s | %s | %.2f | %s | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
+            s["name"], s["size"], s["primitives"], s["load_seconds"], ref_text, fmt_s(s["ttfp"]["cold"]),
+            fmt_s(s["ttfp"]["cold_jit"]), fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"]), sc["threads_ratio"],
+            sc["variant_ratio"],
             fmt_s(sc["auto_first_batch"]), fmt_s(sc["full_first_batch"])))
     L.append("")
     L.append("## Samplers")
