@@ -44,7 +44,7 @@ struct Options {
     std::filesystem::path scene;
     std::optional<std::uint32_t> width, height, spp, seed;
     double seconds = 0.0;        ///< --time: stop starting samples after this many seconds of rendering (0: none)
-    std::uint32_t threads = 0;   ///< 0: LP_NUM_THREADS if set, else every hardware thread (lavapipe's default)
+    std::uint32_t threads = 0;   ///< 0: LP_NUM_THREADS if set (0 there: 1), else every hardware thread (lavapipe's default)
     std::filesystem::path output, variance, stats;
     bool quiet = false;
 };
@@ -88,7 +88,8 @@ Options parseArgs(int argc, char** argv) {
     if (o.scene.empty()) throw InputError(kUsage);
     if (o.threads == 0) {
         const char* lp = std::getenv("LP_NUM_THREADS");
-        o.threads = lp && *lp ? parseCount("LP_NUM_THREADS", lp, 1) : std::max(1u, std::thread::hardware_concurrency());
+        // LP_NUM_THREADS=0: lavapipe renders on the calling thread alone, i.e. one thread.
+        o.threads = lp && *lp ? std::max(1u, parseCount("LP_NUM_THREADS", lp, 0)) : std::max(1u, std::thread::hardware_concurrency());
     }
     for (const auto& p : {o.output, o.variance})
         if (!p.empty()) imageFormatFromPath(p);  // an unknown extension fails now, not after the render
