@@ -9,10 +9,15 @@ spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
   3. renders one time-limited run per sampler with --reference/--error-log (rows at 1, 2, 4, ... spp):
      the time-versus-error curve, the samples/s and rays/s, and the time to reach each relMSE threshold;
   4. compares LP_NUM_THREADS=1 with 2, and --variant auto with --variant full (steady samples/s);
+  5. where the Embree reference is built (tests/bench/embree_reference, embree.py), runs it and
+     vkpath for the same time at the same size and thread count: "ratio to Embree" = vkpath's
+     rays/s over Embree's, and their images' means must agree within noise (scenes it does not
+     support are listed with its reason);
 and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
 
-Usage: bench.py [--quick] --vkpath BUILD/vkpath [--out DIR] [--cache DIR] [--scenes a,b]
-                [--refresh-references] [--ref-budget S] [--curve-seconds S]
+Usage: bench.py [--quick] --vkpath BUILD/vkpath [--embree BUILD/tests/bench/embree_reference | --no-embree]
+                [--out DIR] [--cache DIR] [--scenes a,b] [--refresh-references] [--ref-budget S]
+                [--curve-seconds S] [--embree-seconds S]
 Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
 python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
 """
@@ -34,7 +39,9 @@ except ImportError as e:
     sys.exit(77)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import embree  # noqa: E402
 import metrics  # noqa: E402
+import pfm  # noqa: E402
 import references  # noqa: E402
 import report  # noqa: E402
 import vkrun  # noqa: E402
@@ -61,7 +68,8 @@ MODES = {
     "quick": dict(curve=6.0, scaling=3.0, settings=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64),
                   load_timeout=120),
 }
-PARTS = ("curves", "scaling", "settings")
+PARTS = ("curves", "scaling", "settings", "embree")
+EMBREE_Z_MAX = 5.0  # the Embree image's region means must agree with vkpath's within this many standard errors
 # Equal-time comparisons of one setting against the default (same sampler, same --time): what each
 # knob buys. name -> extra vkpath arguments.
 SETTINGS = [
@@ -151,6 +159,40 @@ def steady(st):
     return st["samples_per_second_steady"] or st["samples_per_second"]
 
 
+def bench_embree(vk, em, scene, runs, wh, seconds, startup, env, name, failures):
+    """The Embree reference and vkpath (default sampler), the same size, thread count and render time,
+    one after the other: their rays/s, the ratio, rays per sample, and the agreement of their image
+    means (embree.compare_means); {"refused": reason} for a scene the reference does not support."""
+    try:
+        e = em.render(scene, runs, "embree", wh + ["--spp", BIG_SPP, "--time", "%.3f" % seconds, "-o", "embree.pfm",
+                                                  "--variance", "embree-var.pfm"], env)
+    except embree.EmbreeRefused as ex:
+        log("  Embree reference: %s" % ex)
+        reason = str(ex)
+        if reason.startswith(str(scene) + ": "):
+            reason = reason[len(str(scene)) + 2:]
+        return {"refused": reason.replace("|", "/")}
+    v = vk.render(scene, runs, "embree-pair-vkpath", wh + ["--spp", BIG_SPP, "--time", "%.3f" % (seconds + startup),
+                                                          "-o", "embree-pair-vkpath.pfm"], env)
+    rows = embree.compare_means(pfm.read_pfm(os.path.join(runs, "embree-pair-vkpath.pfm")), v["spp"],
+                                pfm.read_pfm(os.path.join(runs, "embree.pfm")),
+                                pfm.read_pfm(os.path.join(runs, "embree-var.pfm")), e["spp"])
+    worst = max(rows, key=lambda r: abs(r[4]))
+    if not abs(worst[4]) <= EMBREE_Z_MAX:
+        failures.append("%s: Embree and vkpath images differ: %s %s mean: Embree %.6g, vkpath %.6g (z %.1f)" %
+                        (name, worst[0], worst[1], worst[3], worst[2], worst[4]))
+    vk_rate = v["rays_per_second_steady"] or v["rays_per_second"]
+    out = {"embree_version": e["embree_version"], "threads": e["threads"],
+           "vkpath_lp_num_threads": (v.get("environment") or {}).get("LP_NUM_THREADS"),
+           "seconds": seconds, "embree_rays_per_second": e["rays_per_second"], "vkpath_rays_per_second": vk_rate,
+           "ratio": vk_rate / e["rays_per_second"], "embree_spp": e["spp"], "vkpath_spp": v["spp"],
+           "embree_rays_per_sample": e["rays"] / e["samples"], "vkpath_rays_per_sample": v["rays"] / v["samples"],
+           "max_abs_z": abs(worst[4])}
+    log("  ratio to Embree: %.2fx (vkpath %.3g, Embree %.3g rays/s, %d threads; means agree within %.1f standard "
+        "errors)" % (out["ratio"], vk_rate, e["rays_per_second"], e["threads"], abs(worst[4])))
+    return out
+
+
 def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     W, H = size
     res = {"name": name, "size": "%dx%d" % (W, H)}
@@ -162,11 +204,15 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     res["load_seconds"] = load_s
     log("  %s primitives, `vkpath info` in %.2f s" % (res["primitives"], load_s))
     wh = ["--width", W, "--height", H]
-    ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
-                                      args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
-                                      dict(env, LP_NUM_THREADS=args.ref_threads),
-                                      args.refresh_references)
-    res["reference"] = {k: ref[k] for k in ("spp", "sampler", "floor_relmse", "floor_rmse", "floor_mse", "cached")}
+    # The reference is what the curves and settings measure errors against; `--parts scaling,embree`
+    # (rates only) needs none.
+    ref, res["reference"] = None, None
+    if args.references_only or {"curves", "settings"} & args.parts:
+        ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
+                                          args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
+                                          dict(env, LP_NUM_THREADS=args.ref_threads),
+                                          args.refresh_references)
+        res["reference"] = {k: ref[k] for k in ("spp", "sampler", "floor_relmse", "floor_rmse", "floor_mse", "cached")}
     if args.references_only:
         return res, {}
     runs = os.path.join(workdir, name)
@@ -222,6 +268,9 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
                           "threads_ratio": steady(two) / steady(one), "full": steady(full),
                           "variant_ratio": steady(two) / steady(full), "auto_first_batch": two["seconds_first_batch"],
                           "full_first_batch": full["seconds_first_batch"]}
+    if "embree" in args.parts and args.embree_ref is not None:
+        res["embree"] = bench_embree(vk, args.embree_ref, scene, runs, wh, args.embree_seconds or cfg["scaling"], startup,
+                                     env, name, failures)
     if "settings" in args.parts:
         res["settings"] = bench_settings(vk, scene, runs, wh, ref, "%.3f" % ((args.settings_seconds or cfg["settings"])
                                                                            + startup), env, name, failures, args.settings)
@@ -257,6 +306,11 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small sizes and short runs (a few minutes)")
     ap.add_argument("--vkpath", default=str(ROOT / "build/release/vkpath"), help="the vkpath binary")
+    ap.add_argument("--embree", default=str(ROOT / "build/release/tests/bench/embree_reference"),
+                    help="the Embree reference (tests/bench/embree_reference; default %(default)s, skipped if absent)")
+    ap.add_argument("--no-embree", action="store_true", help="no Embree reference, no ratio to Embree")
+    ap.add_argument("--embree-seconds", type=float,
+                    help="seconds of rendering for the Embree reference and its vkpath pair (default: the scaling runs')")
     ap.add_argument("--out", help="results folder (default: build/bench-results/<mode>-<date> in the repository)")
     ap.add_argument("--cache", default=str(ROOT / "build/bench-cache"),
                     help="references, generated scenes and the warm Mesa shader cache")
@@ -310,6 +364,12 @@ def main():
     except vkrun.VkpathError as e:
         print("bench: %s" % e, file=sys.stderr)
         return 1
+    args.embree_ref = None
+    if "embree" in args.parts and not args.no_embree:
+        try:
+            args.embree_ref = embree.EmbreeReference(args.embree, log)
+        except embree.EmbreeError as e:
+            log("bench: %s: no ratio to Embree" % e)
     load_before = load_average()
     log("bench: %s mode, vkpath %s, samplers %s (reference: %s), results in %s" %
         (mode, vk.version, ", ".join(vk.samplers), vk.default_sampler, args.out))
@@ -330,7 +390,8 @@ def main():
             if not args.references_only:
                 with open(os.path.join(workdir, name, "ttfp-warm.json")) as f:
                     device = json.load(f)["device"]
-        except (vkrun.VkpathError, references.ReferenceRefused, subprocess.SubprocessError, OSError) as e:
+        except (vkrun.VkpathError, embree.EmbreeError, references.ReferenceRefused, subprocess.SubprocessError,
+                OSError) as e:
             log("bench: %s: %s" % (name, e))
             failures.append("%s: %s" % (name, e))
             scenes.append({"name": name, "size": "%dx%d" % size, "skipped": str(e).replace("|", "/")})
@@ -353,6 +414,9 @@ def main():
                                "fraction": secs / wall if wall else 0.0},
         "parts": sorted(args.parts), "scenes": scenes, "failures": failures, "seconds": time.monotonic() - t0,
     }
+    ratios = ["%s %.2fx" % (s["name"], s["embree"]["ratio"]) for s in scenes if "ratio" in s.get("embree", {})]
+    if ratios:
+        log("bench: ratio to Embree (vkpath rays/s / Embree rays/s): " + ", ".join(ratios))
     report.write_summary_json(os.path.join(args.out, "summary.json"), run)
     report.write_summary_md(os.path.join(args.out, "summary.md"), run)
     report.plot(os.path.join(args.out, "relmse_vs_time.png"), run, curves_by_scene)

@@ -75,16 +75,17 @@ def write_summary_md(path, run):
                                                                    s["skipped"]))
             continue
         r, sc = s["reference"], s.get("scaling")
+        ref_text = ("%d spp%s, %.2g / %.2g" % (r["spp"], " (cached)" if r["cached"] else "", r["floor_relmse"],
+                                               r["floor_rmse"]) if r else "— (not needed by these parts)")
         if sc is None:
-            L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | — | — |" % (
-                s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
-                r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
-                fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"])))
+            L.append("| %s | %s | %s | %.2f | %s | %s (JIT %s) | %s (JIT %s) | — | — |" % (
+                s["name"], s["size"], s["primitives"], s["load_seconds"], ref_text, fmt_s(s["ttfp"]["cold"]),
+                fmt_s(s["ttfp"]["cold_jit"]), fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"])))
             continue
-        L.append("| %s | %s | %s | %.2f | %d spp%s, %.2g / %.2g | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
-            s["name"], s["size"], s["primitives"], s["load_seconds"], r["spp"], " (cached)" if r["cached"] else "",
-            r["floor_relmse"], r["floor_rmse"], fmt_s(s["ttfp"]["cold"]), fmt_s(s["ttfp"]["cold_jit"]),
-            fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"]), sc["threads_ratio"], sc["variant_ratio"],
+        L.append("| %s | %s | %s | %.2f | %s | %s (JIT %s) | %s (JIT %s) | %.2fx | %.2fx (JIT %s vs %s) |" % (
+            s["name"], s["size"], s["primitives"], s["load_seconds"], ref_text, fmt_s(s["ttfp"]["cold"]),
+            fmt_s(s["ttfp"]["cold_jit"]), fmt_s(s["ttfp"]["warm"]), fmt_s(s["ttfp"]["warm_jit"]), sc["threads_ratio"],
+            sc["variant_ratio"],
             fmt_s(sc["auto_first_batch"]), fmt_s(sc["full_first_batch"])))
     L.append("")
     L.append("## Samplers")
@@ -105,6 +106,9 @@ def write_summary_md(path, run):
              "2 threads. Scaling columns: steady samples/s with LP_NUM_THREADS=2 over LP_NUM_THREADS=1, and "
              "`--variant auto` over `--variant full` (both 2 threads, default sampler %s)." % run["default_sampler"])
     L.append("")
+    embree_rows = [s for s in run["scenes"] if s.get("embree")]
+    if embree_rows:
+        write_embree_md(L, embree_rows, run["default_sampler"])
     if any(s.get("settings") for s in run["scenes"]):
         L.append("## Settings at equal time")
         L.append("")
@@ -134,6 +138,32 @@ def write_summary_md(path, run):
     with open(path + ".tmp", "w") as f:
         f.write("\n".join(L) + "\n")
     os.replace(path + ".tmp", path)
+
+
+def write_embree_md(L, scenes, sampler):
+    """The "Ratio to Embree" section: per scene, vkpath's and the Embree reference's rays/s in the
+    same run (same size, thread count and render time, one after the other) and their ratio."""
+    L.append("## Ratio to Embree")
+    L.append("")
+    L.append("The Embree reference (tests/bench/embree_reference: path tracing with next-event estimation and MIS "
+             "on Embree's CPU BVH, incoherent single rays) and vkpath (%s) render the same scene at the same size "
+             "with the same thread count for the same time, one after the other; ratio to Embree = vkpath's steady "
+             "rays/s over Embree's. Rays are counted alike (camera, bounce and shadow rays), so rays per sample "
+             "should agree; |z|: the largest difference of the two images' region means, in standard errors." % sampler)
+    L.append("")
+    L.append("| scene | size | threads | vkpath rays/s | Embree rays/s | **ratio to Embree** | rays/sample vkpath / Embree "
+             "| spp vkpath / Embree | max abs(z) |")
+    L.append("|---|---|---|---|---|---|---|---|---|")
+    for s in scenes:
+        e = s["embree"]
+        if e.get("refused"):
+            L.append("| %s | %s | | | refused: %s | | | | |" % (s["name"], s["size"], e["refused"]))
+            continue
+        L.append("| %s | %s | %d | %s | %s | **%.2fx** | %.3f / %.3f | %d / %d | %.1f |" % (
+            s["name"], s["size"], e["threads"], fmt_rate(e["vkpath_rays_per_second"]), fmt_rate(e["embree_rays_per_second"]),
+            e["ratio"], e["vkpath_rays_per_sample"], e["embree_rays_per_sample"], e["vkpath_spp"], e["embree_spp"],
+            e["max_abs_z"]))
+    L.append("")
 
 
 def write_summary_json(path, run):

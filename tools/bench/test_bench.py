@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Unit tests of the benchmark harness's arithmetic (no vkpath run): PFM round trip, metrics, the
-reference noise-floor estimate, threshold crossings, the sampler list of `vkpath --help`.
+reference noise-floor estimate, threshold crossings, the sampler list of `vkpath --help`, the
+comparison of the Embree reference's image with vkpath's and the "Ratio to Embree" table.
 Run: /usr/bin/python3 tools/bench/test_bench.py (CTest: bench_harness, label bench)."""
 import os
 import sys
@@ -14,8 +15,10 @@ except ImportError as e:
     sys.exit(77)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import embree  # noqa: E402
 import metrics  # noqa: E402
 import pfm  # noqa: E402
+import report  # noqa: E402
 import vkrun  # noqa: E402
 
 
@@ -83,6 +86,56 @@ class SamplerListTest(unittest.TestCase):
         self.assertEqual(vkrun.parse_samplers(text), (["bsdf", "light", "mixture"], "mixture"))
         with self.assertRaises(vkrun.VkpathError):
             vkrun.parse_samplers("no such line")
+
+
+class EmbreeCompareTest(unittest.TestCase):
+    """embree.compare_means: z-scores of region means (the Embree reference against vkpath)."""
+
+    def setUp(self):
+        # A left/right asymmetric image (a red left half), Embree's variance of each pixel mean 1e-4.
+        self.img = np.full((8, 8, 3), 0.5)
+        self.img[:, :4, 0] = 0.9
+        self.var = np.full((8, 8, 3), 1e-4)
+
+    def test_identical_images_agree(self):
+        rows = embree.compare_means(self.img, 100, self.img, self.var, 100)
+        self.assertEqual(len(rows), 15)  # 5 regions x 3 channels
+        self.assertTrue(all(r[4] == 0.0 for r in rows))
+
+    def test_known_z(self):
+        # Whole image: standard error sqrt(64 * 1e-4) / 64 = 1.25e-3 for Embree, times sqrt(1 + 100 / 400)
+        # with vkpath's error included; an offset of 0.01 is z = 0.01 / (1.25e-3 * sqrt(1.25)).
+        rows = embree.compare_means(self.img + 0.01, 400, self.img, self.var, 100)
+        z = dict(((r[0], r[1]), r[4]) for r in rows)
+        self.assertAlmostEqual(z[("image", "R")], 0.01 / (1.25e-3 * np.sqrt(1.25)), places=6)
+        # A half has 32 pixels: its standard error is sqrt(2) times the whole image's.
+        self.assertAlmostEqual(z[("left", "G")], z[("image", "G")] / np.sqrt(2.0), places=6)
+
+    def test_mirrored_image_fails(self):
+        rows = embree.compare_means(self.img[:, ::-1], 100, self.img, self.var, 100)
+        z = dict(((r[0], r[1]), r[4]) for r in rows)
+        self.assertEqual(z[("image", "R")], 0.0)  # the whole image's mean cannot see a mirror ...
+        self.assertLess(z[("left", "R")], -100.0)  # ... its halves do
+        self.assertGreater(z[("right", "R")], 100.0)
+
+    def test_size_mismatch(self):
+        with self.assertRaises(ValueError):
+            embree.compare_means(self.img[:4], 100, self.img, self.var, 100)
+
+
+class EmbreeReportTest(unittest.TestCase):
+    def test_ratio_and_refused_rows(self):
+        ok = {"name": "cornell-classic", "size": "64x64", "embree": {
+            "threads": 2, "vkpath_rays_per_second": 5e6, "embree_rays_per_second": 1e7, "ratio": 0.5,
+            "vkpath_rays_per_sample": 4.57, "embree_rays_per_sample": 4.56, "vkpath_spp": 400, "embree_spp": 900,
+            "max_abs_z": 0.7}}
+        refused = {"name": "env-sky", "size": "96x54", "embree": {"refused": "an environment map: not supported"}}
+        lines = []
+        report.write_embree_md(lines, [ok, refused], "mis")
+        text = "\n".join(lines)
+        self.assertIn("## Ratio to Embree", text)
+        self.assertIn("| cornell-classic | 64x64 | 2 | 5 M | 10 M | **0.50x** | 4.570 / 4.560 | 400 / 900 | 0.7 |", text)
+        self.assertIn("| env-sky | 96x54 | | | refused: an environment map: not supported |", text)
 
 
 if __name__ == "__main__":
