@@ -7,6 +7,8 @@ import subprocess
 
 import numpy as np
 
+from vkrun import environment_with
+
 
 class EmbreeError(RuntimeError):
     pass
@@ -33,12 +35,7 @@ class EmbreeReference:
         os.makedirs(workdir, exist_ok=True)
         stats_path = os.path.join(workdir, name + ".json")
         cmd = [self.binary, str(scene)] + [str(a) for a in args] + ["--quiet", "--stats-json", stats_path]
-        full_env = dict(os.environ)
-        for k, v in (env or {}).items():
-            if v is None:
-                full_env.pop(k, None)
-            else:
-                full_env[k] = str(v)
+        full_env = environment_with(env)
         self.log("  %-14s embree_reference %s" % (name, " ".join(str(a) for a in args)))
         p = subprocess.run(cmd, capture_output=True, text=True, env=full_env, cwd=workdir, timeout=timeout)
         last = (p.stderr.strip().splitlines()[-1:] or ["(no message)"])[0]

@@ -8,6 +8,17 @@ import subprocess
 import time
 
 
+
+def environment_with(env):
+    """os.environ with `env`'s entries added (None values remove a variable), as a new dict."""
+    full_env = dict(os.environ)
+    for k, v in (env or {}).items():
+        if v is None:
+            full_env.pop(k, None)
+        else:
+            full_env[k] = str(v)
+    return full_env
+
 class VkpathError(RuntimeError):
     pass
 
@@ -79,12 +90,7 @@ class Vkpath:
         os.makedirs(workdir, exist_ok=True)
         stats_path = os.path.join(workdir, name + ".json")
         cmd = [self.binary, "render", str(scene)] + [str(a) for a in args] + ["--quiet", "--stats-json", stats_path]
-        full_env = dict(os.environ)
-        for k, v in (env or {}).items():
-            if v is None:
-                full_env.pop(k, None)
-            else:
-                full_env[k] = str(v)
+        full_env = environment_with(env)
         shown = " ".join("%s=%s" % kv for kv in (env or {}).items()
                          if kv[1] is not None and kv[0] != "MESA_SHADER_CACHE_DIR")
         self.log("  %-14s %s%s" % (name, shown + " " if shown else "", " ".join(str(a) for a in args)))

@@ -45,6 +45,7 @@ void checkSupported(const Scene& scene) {
         if (m.type != MaterialType::Lambertian && m.type != MaterialType::DiffuseLight)
             refuse(scene, "material '" + m.name + "' (" + typeName(m.type) + ")");
         if (s.type == ShapeType::Sphere && m.emits()) refuse(scene, "an emitting sphere");
+        if (m.albedoTexture >= 0 || m.emitTexture >= 0) refuse(scene, "material '" + m.name + "' (a texture)");
     }
 }
 
