@@ -163,6 +163,7 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
         std::map<std::string, std::uint32_t> index;
         scenejson::TextureReader textureReader(scene, file, options.allowPaths, textures);
         if (materials) scenejson::readMaterials(*materials, scene, index, textureReader);
+        textureReader.finish();
         scenejson::readObjects(objects, index, options, scene);
         return scene;
     };

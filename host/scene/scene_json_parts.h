@@ -37,6 +37,9 @@ public:
     /// name of one in "textures"; its colours in range): its index into Scene::solidTextures
     /// (colour set to 1).
     std::int32_t colourOrTexture(const json::Value& v, const json::Range& range, glm::vec3& colour);
+    /// Reads the named textures no material used (their mistakes are errors too), then drops
+    /// what they added.
+    void finish();
 
 private:
     std::uint32_t texture(const json::Value& v, const json::Range& range);

@@ -88,6 +88,20 @@ std::uint32_t TextureReader::named(const json::Value& v, const Range& range) {
     return t;
 }
 
+void TextureReader::finish() {
+    // A texture no material names is still read, so that its mistakes are found; what it added
+    // is dropped again (nothing refers to it).
+    const std::size_t textures = scene_.solidTextures.size(), images = scene_.images.size(), samplers = scene_.textures.size();
+    for (const auto& [name, value] : named_) {
+        bool used = false;
+        for (const auto& [key, index] : done_) used = used || key.first == name;
+        if (!used) (void)texture(value, Range::closed(0.0, 4e15));  // any colour a texture may hold
+    }
+    scene_.solidTextures.resize(textures);
+    scene_.images.resize(images);
+    scene_.textures.resize(samplers);
+}
+
 std::uint32_t TextureReader::add(SolidTexture t) {
     depth_.push_back(t.kind == gpu::STEX_CHECKER ? std::max(depth_[t.even], depth_[t.odd]) + 1 : 0u);
     scene_.solidTextures.push_back(std::move(t));

@@ -187,6 +187,8 @@ std::vector<Case> cases() {
          "/textures/b/odd", "texture \"a\" refers to itself"},
         {"texture_nesting", withMaterials(R"({"m":{"type":"lambertian","albedo":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":{"type":"checker","scale":1,"even":[0,0,0],"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]},"odd":[1,1,1]}}})"),
          "/materials/m/albedo/even", "checkers nest more than 16 deep"},
+        {"texture_unused_checked", scene(kCamera, kMaterials, "[" + kSphere + "]", R"(,"textures":{"spare":{"type":"noise","scale":-1}})"),
+         "/textures/spare/scale", "must be > 0 (got -1)"},
         {"textures_not_object", scene(kCamera, kMaterials, "[" + kSphere + "]", R"(,"textures":[])"), "/textures",
          "must be an object"},
         {"texture_on_dielectric", withMaterials(R"({"m":{"type":"dielectric","ior":1.5,"albedo":{"type":"noise"}}})"),
