@@ -108,8 +108,9 @@ struct Material {
     PbrParams pbr;              ///< Pbr only
     /// JSON scenes: a texture (index into Scene::solidTextures) gives the albedo (lambertian, metal;
     /// clamped to [0,1]) or the emitted radiance (lambertian, diffuse_light) at each point; -1:
-    /// none, the constant above. With a texture, albedo and emit hold its upper bound
-    /// (solidTextureBound), so that emits() and the pick of lights by power see it.
+    /// none, the constant above. With an emission texture, emit holds its upper bound
+    /// (solidTextureBound), so that emits() and the pick of lights by power see it; with an
+    /// albedo texture, albedo is 1 (the kernel replaces it at every hit).
     std::int32_t albedoTexture = -1;
     std::int32_t emitTexture = -1;
     bool emits() const { return emit.x > 0.0f || emit.y > 0.0f || emit.z > 0.0f; }
