@@ -14,10 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
-#include "scene/ldr_image.h"
 #include "core/input_file.h"
 #include "scene/gltf_parts.h"
 #include "scene/json_reader.h"
+#include "scene/ldr_image.h"
 
 namespace vkp::gltf {
 

@@ -189,7 +189,6 @@ struct SolidTexture {
     std::uint32_t even = 0;   ///< checker: index into Scene::solidTextures of the even cells' texture
     std::uint32_t odd = 0;    ///< ... and of the odd cells'
     std::uint32_t texture = 0;  ///< image: index into Scene::textures
-    std::string where;        ///< the JSON pointer it was read from (messages)
 };
 
 /// The largest value, per channel, that texture t of `scene` takes anywhere (images: their

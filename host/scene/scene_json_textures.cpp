@@ -38,13 +38,11 @@ std::uint32_t TextureReader::texture(const json::Value& v, const Range& range) {
     if (v.json().is_array()) {  // a colour where a texture may be (a checker's side)
         SolidTexture t;
         t.colour = v.vec3(range);
-        t.where = v.pointer();
-        return add(std::move(t));
+        return add(t);
     }
     if (v.json().is_string()) return named(v, range);
     json::Object o = v.object();
     SolidTexture t;
-    t.where = v.pointer();
     const std::string type = o.choice("type", {"solid", "checker", "image", "noise", "turbulence", "marble"});
     if (type == "solid") {
         t.kind = gpu::STEX_SOLID;
@@ -70,7 +68,7 @@ std::uint32_t TextureReader::texture(const json::Value& v, const Range& range) {
         t.scale = o.number("scale", Range::above(0.0), 1.0f);
     }
     o.finish();
-    return add(std::move(t));
+    return add(t);
 }
 
 std::uint32_t TextureReader::named(const json::Value& v, const Range& range) {
@@ -92,11 +90,10 @@ void TextureReader::finish() {
     // A texture no material names is still read, so that its mistakes are found; what it added
     // is dropped again (nothing refers to it).
     const std::size_t textures = scene_.solidTextures.size(), images = scene_.images.size(), samplers = scene_.textures.size();
-    for (const auto& [name, value] : named_) {
-        bool used = false;
-        for (const auto& [key, index] : done_) used = used || key.first == name;
-        if (!used) (void)texture(value, Range::closed(0.0, 4e15));  // any colour a texture may hold
-    }
+    std::set<std::string> used;
+    for (const auto& [key, index] : done_) used.insert(key.first);
+    for (const auto& [name, value] : named_)
+        if (!used.count(name)) (void)texture(value, Range::closed(0.0, 4e15));  // any colour a texture may hold
     scene_.solidTextures.resize(textures);
     scene_.images.resize(images);
     scene_.textures.resize(samplers);

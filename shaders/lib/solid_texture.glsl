@@ -25,24 +25,23 @@ vec2 solidTextureUv(GpuPrim p, vec2 ab, vec3 x) {
 }
 
 /// Applies the JSON textures of material m at point x of primitive p (surface parameters ab): the
-/// albedo (clamped to [0, 1]) and, if emission, the emitted radiance. Other materials are left alone.
-void solidTexturesAt(GpuPrim p, vec2 ab, vec3 x, bool emission, inout GpuMaterial m) {
+/// emitted radiance and, if albedo, the albedo (clamped to [0, 1]). Other materials are left alone.
+void solidTexturesAt(GpuPrim p, vec2 ab, vec3 x, bool albedo, inout GpuMaterial m) {
     if (!HAS_SOLID_TEXTURES || (floatBitsToUint(m.m0.w) & MATF_SOLID_TEXTURE) == 0u) return;
     gSolidTextureBase = texelFetch(uTexInfo, 0).w;
     vec3 pf = x + solidTextureOrigin();  // the file's coordinates
     vec2 uv = solidTextureUv(p, ab, x);
     uint a = floatBitsToUint(m.m2.x);
     uint e = floatBitsToUint(m.m2.y);
-    if (a != 0u) m.m0.xyz = min(evalSolidTexture(a - 1u, pf, uv), vec3(1.0f));
-    if (emission && e != 0u) m.m1.xyz = evalSolidTexture(e - 1u, pf, uv);
+    if (albedo && a != 0u) m.m0.xyz = min(evalSolidTexture(a - 1u, pf, uv), vec3(1.0f));
+    if (e != 0u) m.m1.xyz = evalSolidTexture(e - 1u, pf, uv);
 }
 
 /// The emission of a JSON-textured emitter m at a point x sampled on light primitive p
-/// (next-event estimation).
+/// (next-event estimation; the albedo is not needed there).
 void solidEmissionAt(GpuPrim p, vec3 x, inout GpuMaterial m) {
     if (!HAS_SOLID_TEXTURES || (floatBitsToUint(m.m0.w) & MATF_SOLID_TEXTURE) == 0u) return;
-    m.m2.x = 0.0f;  // the albedo is not needed
-    solidTexturesAt(p, primAbAt(p, x), x, true, m);
+    solidTexturesAt(p, primAbAt(p, x), x, false, m);
 }
 
 #endif

@@ -39,7 +39,6 @@ const uint STEX_IMAGE = 2u;
 const uint STEX_NOISE = 3u;
 const uint STEX_TURBULENCE = 4u;
 const uint STEX_MARBLE = 5u;
-const uint STEX_KIND_COUNT = 6u;
 const uint STEX_NODE_TEXELS = 2u;
 const uint PERLIN_POINTS = 256u;     // the book's point_count
 const int TURBULENCE_OCTAVES = 7;    // the book's turb(p, 7)

@@ -3,7 +3,7 @@
 // (noise, turbulence, marble). The host unit tests (tests/unit/test_solid_texture.cpp) run this
 // exact code; tests/gpu/test_gpu_solid_textures.cpp compares the GLSL build with it value by value.
 //
-// Storage (host/render/texture_pack.cpp packSolidTextures), RGBA32UI texels of the texture-info
+// Storage (host/render/texture_pack.cpp packTextures), RGBA32UI texels of the texture-info
 // buffer from texel T = info[0].w on (T = 0: the scene has none):
 //   T + 0:           (origin.xyz as float bits, texel of the Perlin table relative to T)
 //   T + 1 + 2 k:     node k: (kind STEX_*, a, b, 0)
@@ -65,7 +65,7 @@ VKP_FN uint perlinCell(float f) {
 
 /// The book's Perlin noise (sec. 5.6-5.7) at p: random unit gradients at the lattice points, picked
 /// by permX[i] ^ permY[j] ^ permZ[k], dotted with the offset to p and blended with Hermite
-/// weights. In (-1, 1); 0 at every lattice point. The table is at texel pt of the solid-texture
+/// weights. |noise| <= sqrt(3) (host solidTextureBound; about 1 in practice); 0 at every lattice point. The table is at texel pt of the solid-texture
 /// data (see the file comment).
 VKP_FN float perlinNoise(vec3 p, uint pt) {
     vec3 f = floor(p);

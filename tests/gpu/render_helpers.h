@@ -1,9 +1,12 @@
 // The one place where the GPU and stress tests build a Renderer (so that a change of the Renderer
 // constructor touches only this file): a scene, its BVH and the renderer over them, kept together;
-// and renderSums, a whole render's per-pixel sums with the checks every render must pass.
+// and renderSums, a whole render's per-pixel sums with the checks every render must pass; the pooled
+// mean of a render and where a camera ray meets a plane, for tests that compare with closed forms.
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -77,6 +80,29 @@ inline PixelSums renderSums(VulkanDevice& dev, const Scene& scene, Sampler sampl
     o.sampler = sampler;
     o.samplesPerDispatch = 4;
     return renderSums(dev, scene, o, spp, what);
+}
+
+/// Pooled mean and its standard error of channel c over every pixel of `s` (each pixel's samples
+/// are one group: the standard error comes from the per-pixel sums of squares).
+inline void pooledMean(const PixelSums& s, int c, double& mean, double& stderrOfMean) {
+    double sum = 0, sq = 0, n = 0;
+    for (std::size_t i = 0; i < s.sum.size() / 4; ++i) {
+        sum += s.sum[4 * i + c];
+        sq += s.sumSq[4 * i + c];
+        n += s.sum[4 * i + 3];
+    }
+    mean = sum / n;
+    const double var = std::max(0.0, (sq / n - mean * mean) * n / (n - 1));
+    stderrOfMean = std::sqrt(var / n);
+}
+
+/// Where the camera ray through image point (px, py) of `f` meets the plane z = zPlane; pixel
+/// units, the centre of pixel (i, j) at (i, j) (GpuFrame::pixel00), so pixel (i, j) spans
+/// [i - 0.5, i + 0.5] x [j - 0.5, j + 0.5].
+inline glm::dvec3 rayPlanePoint(const gpu::GpuFrame& f, double px, double py, double zPlane) {
+    const glm::dvec3 o(f.origin), t = glm::dvec3(f.pixel00) + px * glm::dvec3(f.pixelDu) + py * glm::dvec3(f.pixelDv);
+    const double s = (zPlane - o.z) / (t.z - o.z);
+    return o + s * (t - o);
 }
 
 }  // namespace vkp::test

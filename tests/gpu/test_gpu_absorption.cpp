@@ -19,20 +19,6 @@ namespace {
 
 constexpr double kMaxZ = 4.5;
 
-/// Pooled mean and its standard error of channel c over every pixel of `s` (each pixel's samples
-/// are one group: the standard error comes from the per-pixel sums of squares).
-void pooled(const PixelSums& s, int c, double& mean, double& stderrOfMean) {
-    double sum = 0, sq = 0, n = 0;
-    for (std::size_t i = 0; i < s.sum.size() / 4; ++i) {
-        sum += s.sum[4 * i + c];
-        sq += s.sumSq[4 * i + c];
-        n += s.sum[4 * i + 3];
-    }
-    mean = sum / n;
-    const double var = std::max(0.0, (sq / n - mean * mean) * n / (n - 1));
-    stderrOfMean = std::sqrt(var / n);
-}
-
 // Glass of index 1.5 (F = 0.04 at normal incidence), radius 1, seen along its axis through a
 // 0.01-degree field of view against a background of 1: a camera ray is reflected (F, sees 1) or
 // enters, crosses 2R (keeps a = exp(-2 sigma R)), and leaves or is reflected back, and so on:
@@ -57,7 +43,7 @@ TEST(GpuAbsorption, GlassSphereAlongItsAxisMatchesTheClosedForm) {
                 const double F = 0.04, a = std::exp(-2.0 * sigma[c]);
                 const double want = F + (1 - F) * (1 - F) * a / (1 - F * a);
                 double mean, se;
-                pooled(s, c, mean, se);
+                pooledMean(s, c, mean, se);
                 const double z = (mean - want) / std::max(se, 1e-9);
                 std::printf("  %-7s sigma %-4g: %.6f vs closed form %.6f (z %.2f)\n", samplerName(sampler), sigma[c], mean, want, z);
                 EXPECT_LE(std::abs(z), kMaxZ) << samplerName(sampler) << " sigma " << sigma[c];
@@ -87,7 +73,7 @@ TEST(GpuAbsorption, NextEventEstimationInsideGlassIsAttenuatedToo) {
     int k = 0;
     for (Sampler sampler : kAllSamplers) {
         const PixelSums s = renderSums(dev, scene, sampler, sampler == Sampler::Bsdf ? 4096 : 1024, "glass room");
-        for (int c = 0; c < 3; ++c) pooled(s, c, mean[k][c], se[k][c]);
+        for (int c = 0; c < 3; ++c) pooledMean(s, c, mean[k][c], se[k][c]);
         ++k;
     }
     for (int c = 0; c < 3; ++c) {

@@ -154,14 +154,6 @@ TEST(GpuSolidTextures, GlslMatchesCppValueByValue) {
 
 // ---- 2. In the path tracer ----------------------------------------------------------------------
 
-/// Where the ray through image point (px, py) meets the plane z = zPlane; pixel units, the centre
-/// of pixel (i, j) at (i, j) (GpuFrame::pixel00), so pixel (i, j) spans [i - 0.5, i + 0.5].
-glm::dvec3 planePoint(const gpu::GpuFrame& f, double px, double py, double zPlane) {
-    const glm::dvec3 o(f.origin), t = glm::dvec3(f.pixel00) + px * glm::dvec3(f.pixelDu) + py * glm::dvec3(f.pixelDv);
-    const double s = (zPlane - o.z) / (t.z - o.z);
-    return o + s * (t - o);
-}
-
 TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
     VKP_REQUIRE_DEVICE(dev);
     const auto dir = scratchDir("gpu_solid_textures_quads");
@@ -196,7 +188,7 @@ TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
                 glm::vec2 uvs[4];
                 bool inside = true;
                 for (int c = 0; c < 4; ++c) {
-                    const glm::dvec3 w = planePoint(frame, px - 0.5 + (c & 1), py - 0.5 + (c >> 1), z);
+                    const glm::dvec3 w = rayPlanePoint(frame, px - 0.5 + (c & 1), py - 0.5 + (c >> 1), z);
                     const int q = int(std::floor((w.x + 8.4) / 5.7));
                     const double a = (w.x - (-8.4 + 5.7 * q)) / 5.4, b = (w.y + 2.7) / 5.4;
                     if (q < 0 || q > 2 || a < 0 || a > 1 || b < 0 || b > 1 || (quad >= 0 && q != quad)) inside = false;
@@ -214,7 +206,7 @@ TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
                     bool uniform = true;
                     for (int j = 0; j <= 8 && uniform; ++j)
                         for (int i = 0; i <= 8 && uniform; ++i) {
-                            const glm::dvec3 w = planePoint(frame, px - 0.5 + i / 8.0, py - 0.5 + j / 8.0, z);
+                            const glm::dvec3 w = rayPlanePoint(frame, px - 0.5 + i / 8.0, py - 0.5 + j / 8.0, z);
                             const double a = (w.x - (-8.4 + 5.7 * quad)) / 5.4, b = (w.y + 2.7) / 5.4;
                             uniform = gpu::evalSolidTexture(node, glm::vec3(w) + origin, glm::vec2(float(a), float(b))) == v;
                         }
@@ -233,7 +225,7 @@ TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
                     glm::dvec3 sum(0.0);
                     for (int j = 0; j < 32; ++j)
                         for (int i = 0; i < 32; ++i) {
-                            const glm::dvec3 w = planePoint(frame, px - 0.5 + (i + 0.5) / 32.0, py - 0.5 + (j + 0.5) / 32.0, z);
+                            const glm::dvec3 w = rayPlanePoint(frame, px - 0.5 + (i + 0.5) / 32.0, py - 0.5 + (j + 0.5) / 32.0, z);
                             const double a = (w.x - 3.0) / 5.4, b = (w.y + 2.7) / 5.4;
                             sum += glm::dvec3(gpu::evalSolidTexture(node, glm::vec3(w) + origin, glm::vec2(float(a), float(b))));
                         }
@@ -273,16 +265,7 @@ TEST(GpuSolidTextures, NextEventEstimationReadsTheEmissionWhereItSamples) {
     int k = 0;
     for (Sampler sampler : kAllSamplers) {
         const PixelSums s = renderSums(dev, scene, sampler, sampler == Sampler::Bsdf ? 2048 : 512, "textured lights");
-        for (int c = 0; c < 3; ++c) {
-            double sum = 0, sq = 0, n = 0;
-            for (std::size_t i = 0; i < s.sum.size() / 4; ++i) {
-                sum += s.sum[4 * i + c];
-                sq += s.sumSq[4 * i + c];
-                n += s.sum[4 * i + 3];
-            }
-            mean[k][c] = sum / n;
-            se[k][c] = std::sqrt(std::max(0.0, (sq / n - mean[k][c] * mean[k][c]) / (n - 1)));
-        }
+        for (int c = 0; c < 3; ++c) pooledMean(s, c, mean[k][c], se[k][c]);
         ++k;
     }
     for (int c = 0; c < 3; ++c) {

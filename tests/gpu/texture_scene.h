@@ -11,6 +11,7 @@
 
 #include "render/gpu_scene.h"
 #include "render/texture_pack.h"
+#include "render_helpers.h"
 #include "test_gpu_analytic_common.h"
 
 #include "render/texture_sample_host.h"
@@ -25,10 +26,7 @@ namespace vkp::test {
 
 /// Where the ray through image point (px, py) (pixel units, as the kernel's jitter) meets z = 0.
 inline glm::dvec2 planePoint(const gpu::GpuFrame& f, double px, double py) {
-    const glm::dvec3 o(f.origin), t = glm::dvec3(f.pixel00) + px * glm::dvec3(f.pixelDu) + py * glm::dvec3(f.pixelDv);
-    const double s = o.z / (o.z - t.z);
-    const glm::dvec3 p = o + s * (t - o);
-    return glm::dvec2(p.x, p.y);
+    return glm::dvec2(rayPlanePoint(f, px, py, 0.0));
 }
 
 /// Quad index at a plane point (-1: none) and the UV there (as the file sets them).
