@@ -32,6 +32,7 @@
 #include "lib/hit.glsl"
 #include "lib/direct_light.glsl"
 #include "lib/mixture.glsl"
+#include "lib/media.glsl"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
@@ -47,7 +48,7 @@ struct PathState {
     SampleStream smp; // this sample's random numbers (shared/sample_stream.h: sequence, dimension layout)
     bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
     vec3 prevX;          // mis: the diffuse vertex the current ray left from
-    vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it)
+    vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it; 0 in a medium)
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
     vec3 sigma;          // HAS_ABSORPTION: absorption coefficient of the dielectric the ray travels
@@ -84,14 +85,22 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     return s;
 }
 
-/// Trace the path's current ray and scatter at what it hits. Returns true when the path has ended
-/// (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
+/// Trace the path's current ray and scatter at what it finds: a surface, or a point inside a
+/// medium where free-flight sampling (lib/media.glsl) stops it first. Returns true when the path
+/// has ended (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
 bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     rays++;
     s.depth++;
     sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
     SurfaceHit h;
-    if (!findSurface(s.o, s.d, h, passes)) {
+    bool found = findSurface(s.o, s.d, h, passes);
+    float tEnd = found ? distance(s.o, h.x) : VKP_FAR;  // where the segment ends
+    // Media: the ray scatters at distance tEnd inside one (the weight, transmittance x density /
+    // free-flight density, is 1; the albedo comes with the phase function's sample below), or it
+    // passes them all with the probability their transmittance is, weight 1 too.
+    uint medium = 0u;
+    bool inMedium = HAS_MEDIA && sampleMediumEvent(s.o, s.d, tEnd, s.smp, tEnd, medium, passes);
+    if (!found && !inMedium) {
         // Inside absorbing glass an escaping ray travels forever: nothing is left of it.
         if (!(HAS_ABSORPTION && any(greaterThan(s.sigma, vec3(0.0f)))))
             s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
@@ -99,23 +108,29 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     }
     // Beer-Lambert along the segment inside absorbing glass ("Ray Tracing: The Next Week" sec. 9's
     // constant density, absorbing only): the fraction exp(-sigma t) of the light is left.
-    if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * distance(s.o, h.x));
-    // The light this ray found, weighted against the light sample that could have found it from
-    // the previous vertex.
-    if (HAS_EMITTERS && s.countEmission)
-        s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
+    if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * tEnd);
+    if (!inMedium) {
+        // The light this ray found, weighted against the light sample that could have found it
+        // from the previous vertex.
+        if (HAS_EMITTERS && s.countEmission)
+            s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
+        if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
+    }
     s.countEmission = true;
     s.prevBsdfPdf = 0.0f;
-    if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
     if (s.depth >= frame.size.z) return true;  // max_depth rays per path
 
-    Bsdf b = makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace);
+    // The vertex: a surface point with its BSDF, or a point in a medium with its phase function
+    // (no normal, no offset: nothing to escape from).
+    vec3 x = inMedium ? s.o + tEnd * s.d : h.x;
+    Bsdf b = inMedium ? mediumBsdf(medium, x, s.d) : makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace);
     float uStrategy = bsdfIsDelta(b) ? 0.0f : sampleNext(s.smp);  // picks a light, or the mixture's half
     vec3 uBsdf = bsdfNumbers(b, s.smp);
-    vec3 xo = spawnFrom(h, h.ns);
+    vec3 xo = inMedium ? x : spawnFrom(h, h.ns);
+    uint prim = inMedium ? VKP_NO_PRIM : h.prim;
     bool nee = !bsdfIsDelta(b) && neeOn();
     if (nee || (punctualOn() && !bsdfIsDelta(b)))  // punctual lights: next-event estimation under every sampler
-        s.radiance += directLight(b, s.throughput, s.sigma, h.x, xo, h.prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
+        s.radiance += directLight(b, s.throughput, s.sigma, x, xo, prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
     vec3 dir;
     if (mixtureOn(b)) {
         if (!sampleMixture(b, xo, uStrategy, uBsdf, s.throughput, dir, passes)) return true;
@@ -127,8 +142,8 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         if (nee) {
             // `light` ignores the light this sample finds (already counted), `mis` weights it.
             s.countEmission = neeWeighted(b);
-            s.prevX = h.x;
-            s.prevN = h.ns;
+            s.prevX = x;
+            s.prevN = b.n;  // 0 in a medium (lib/environment.glsl pdfEnv)
             s.prevBsdfPdf = pdf;
         }
     }

@@ -303,6 +303,12 @@ int runInfo(const CliArgs& a) {
         if (punctual[k]) std::printf(", %zu %s", punctual[k], gpu::kPunctualKindNames[k]);
     std::printf("\n");
     std::printf("materials    %zu\n", scene.materials.size());
+    if (!scene.media.empty()) {
+        std::size_t spheres = 0;
+        for (const Medium& m : scene.media) spheres += m.boundary == Medium::Boundary::Sphere;
+        std::printf("media        %zu constant-density (%zu in spheres, %zu in boxes), each tested along every ray\n",
+                    scene.media.size(), spheres, scene.media.size() - spheres);
+    }
     std::printf("bvh          %zu nodes, %zu leaves, depth %u, SAH cost %.3f, built in %.2f ms\n", bvh.stats.nodeCount,
                 bvh.stats.leafCount, bvh.stats.maxDepth, bvh.stats.sahCost, bvh.stats.buildMs);
     // Geometry on the device: the BVH nodes, the primitives, the instances and (when the variant

@@ -118,6 +118,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         used[s.material] = true;
         if (s.sampled) f.lights |= bit(std::uint32_t(s.type));
     });
+    for (const Medium& m : scene.media) used[m.material] = true;  // their isotropic materials: MAT_ISOTROPIC compiles media in
     if (!scene.punctualLights.empty()) f.lights |= bit(gpu::LIGHT_KIND_PUNCTUAL);
     f.instances = !scene.instances.empty();
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {

@@ -91,6 +91,11 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
             a.materials.insert(a.materials.end(), sheen.begin(), sheen.end());
         }
     }
+    // Then the media (shared/medium.h), at texel media.y.
+    a.frame.media = glm::uvec4(std::uint32_t(scene.media.size()), std::uint32_t(a.materials.size()), 0, 0);
+    for (const gpu::GpuMedium& m : packMedia(scene.media))
+        for (const glm::vec4& t : {m.r0, m.r1, m.r2, m.params}) a.materials.push_back(t);
+    static_assert(gpu::GPU_MEDIUM_TEXELS == 4, "one push_back per GpuMedium member");
     if (a.materials.empty()) a.materials.assign(1, glm::vec4(0.0f));
     std::vector<std::uint32_t> primOfShape(scene.shapes.size(), 0);
     for (std::uint32_t i = 0; i < bvh.primToShape.size(); ++i) {

@@ -4,6 +4,7 @@
 
 #include "shared/gpu_types.h"
 #include "shared/instance.h"
+#include "shared/medium.h"
 #include "shared/texture_record.h"
 
 namespace vkp::gpu {
@@ -18,13 +19,15 @@ static_assert(sizeof(GpuLight) == GPU_LIGHT_TEXELS * 16, "GpuLight: GPU_LIGHT_TE
 static_assert(sizeof(GpuPunctualLight) == GPU_PUNCTUAL_TEXELS * 16 && offsetof(GpuPunctualLight, q3) == 48,
               "GpuPunctualLight: GPU_PUNCTUAL_TEXELS vec4 texels, in order");
 static_assert(GPU_PUNCTUAL_TEXELS % GPU_LIGHT_TEXELS == 0, "punctual records are whole GpuLight entries of the lights buffer");
-static_assert(sizeof(GpuFrame) == 13 * 16, "GpuFrame: thirteen vec4 members (std140)");
+static_assert(sizeof(GpuFrame) == 14 * 16, "GpuFrame: fourteen vec4 members (std140)");
 static_assert(offsetof(GpuFrame, env) == 10 * 16 && offsetof(GpuFrame, envSize) == 11 * 16 &&
-                  offsetof(GpuFrame, punctual) == 12 * 16,
+                  offsetof(GpuFrame, punctual) == 12 * 16 && offsetof(GpuFrame, media) == 13 * 16,
               "GpuFrame member order");
 static_assert(sizeof(GpuInstance) == GPU_INSTANCE_TEXELS * 16, "GpuInstance: GPU_INSTANCE_TEXELS vec4 texels");
 static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) == 4 * 16 && offsetof(GpuInstance, o2w2) == 6 * 16,
               "GpuInstance texel order: info, world-to-object rows, object-to-world rows");
+static_assert(sizeof(GpuMedium) == GPU_MEDIUM_TEXELS * 16 && offsetof(GpuMedium, params) == 48,
+              "GpuMedium: GPU_MEDIUM_TEXELS vec4 texels, the three rows then the parameters");
 static_assert(sizeof(GpuPush) == 3 * 16 && offsetof(GpuPush, adaptive) == 16 && offsetof(GpuPush, band) == 32,
               "GpuPush: three uvec4 (push constants)");
 

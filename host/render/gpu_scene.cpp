@@ -103,4 +103,18 @@ std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materia
     return out;
 }
 
+std::vector<gpu::GpuMedium> packMedia(const std::vector<Medium>& media) {
+    std::vector<gpu::GpuMedium> out;
+    out.reserve(media.size());
+    for (const Medium& m : media) {
+        gpu::GpuMedium g{};
+        glm::vec4* rows[3] = {&g.r0, &g.r1, &g.r2};
+        for (int i = 0; i < 3; ++i)  // row i of the column-major toLocal
+            *rows[i] = glm::vec4(float(m.toLocal[0][i]), float(m.toLocal[1][i]), float(m.toLocal[2][i]), float(m.toLocalOffset[i]));
+        g.params = glm::vec4(m.density, bitsf(std::uint32_t(m.boundary)), bitsf(m.material), 0.0f);
+        out.push_back(g);
+    }
+    return out;
+}
+
 }  // namespace vkp

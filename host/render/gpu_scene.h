@@ -5,6 +5,7 @@
 #include "render/features.h"
 #include "scene/scene.h"
 #include "shared/gpu_types.h"
+#include "shared/medium.h"
 
 namespace vkp {
 
@@ -22,5 +23,8 @@ std::uint32_t tileStride(std::uint32_t n);
 gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power, glm::uvec2 workgroup = glm::uvec2(8, 8));
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
+
+/// The kernel's records of the media (shared/medium.h GpuMedium), in Scene::media order.
+std::vector<gpu::GpuMedium> packMedia(const std::vector<Medium>& media);
 
 }  // namespace vkp

@@ -26,7 +26,8 @@ enum class MaterialType : std::uint32_t {
     Metal = gpu::MAT_METAL,
     Dielectric = gpu::MAT_DIELECTRIC,
     DiffuseLight = gpu::MAT_DIFFUSE_LIGHT,
-    Pbr = gpu::MAT_PBR
+    Pbr = gpu::MAT_PBR,
+    Isotropic = gpu::MAT_ISOTROPIC  ///< the phase function of a Medium (no surface has it)
 };
 
 /// A texture lookup of a material: which texture of Scene::textures, which UV set, and the
@@ -94,7 +95,8 @@ struct PbrParams {
 struct Material {
     std::string name;
     MaterialType type = MaterialType::Lambertian;
-    glm::vec3 albedo{0.0f};  ///< reflectance in [0,1] per channel (lambertian, metal); dielectric: 1
+    glm::vec3 albedo{0.0f};  ///< reflectance in [0,1] per channel (lambertian, metal; isotropic: the
+                             ///< medium's single-scattering albedo); dielectric: 1
     glm::vec3 emit{0.0f};    ///< emitted radiance (linear RGB); lambertian or diffuse_light
     float fuzz = 0.0f;       ///< metal: radius of the fuzz sphere, in [0,1]
     float ior = 1.5f;        ///< dielectric: index of refraction (relative to the outside)
@@ -106,7 +108,7 @@ struct Material {
                                 ///< for every emitting lambertian (which always emits from both faces);
                                 ///< Pbr: glTF doubleSided (a single-sided emitter emits from its front only)
     PbrParams pbr;              ///< Pbr only
-    /// JSON scenes: a texture (index into Scene::solidTextures) gives the albedo (lambertian, metal;
+    /// JSON scenes: a texture (index into Scene::solidTextures) gives the albedo (lambertian, metal, isotropic;
     /// clamped to [0,1]) or the emitted radiance (lambertian, diffuse_light) at each point; -1:
     /// none, the constant above. With an emission texture, emit holds its upper bound
     /// (solidTextureBound), so that emits() and the pick of lights by power see it; with an
@@ -273,6 +275,24 @@ struct PunctualLight {
     double power(double sceneRadius) const;
 };
 
+/// A constant-density medium ("Ray Tracing: The Next Week", sec. 9; the JSON scenes'
+/// constant_medium; shaders/shared/medium.h): the region inside a convex boundary, a sphere or a
+/// box under an affine map (an ellipsoid or a parallelepiped), where light is extinguished at the
+/// rate density per unit length and scattered isotropically with its material's albedo. The
+/// boundary is no surface: nothing is rendered where it lies.
+struct Medium {
+    enum class Boundary : std::uint32_t { Sphere = gpu::MEDIUM_SPHERE, Box = gpu::MEDIUM_BOX };
+    Boundary boundary = Boundary::Sphere;
+    /// From camera-relative world space to the boundary's local space, in which the region is
+    /// the unit ball (Sphere) or the cube [-1, 1]^3 (Box): local = toLocal * x + toLocalOffset.
+    glm::dmat3 toLocal{1.0};
+    glm::dvec3 toLocalOffset{0.0};
+    float density = 0.0f;        ///< extinction per world unit, > 0
+    std::uint32_t material = 0;  ///< index into Scene::materials: its MaterialType::Isotropic material
+    glm::dvec3 lo{0.0}, hi{0.0};  ///< camera-relative bounding box of the region (world units)
+    std::string name;            ///< for messages: where the file declares it, e.g. "/objects/7"
+};
+
 struct Scene {
     std::filesystem::path path;  ///< file it was loaded from (for messages)
     /// Camera-relative space (pbrt-v4's "camera-world" frame): every position of this Scene
@@ -297,6 +317,7 @@ struct Scene {
     std::vector<TextureImage> images;
     std::vector<Texture> textures;                   ///< TextureRef::texture indexes this
     std::vector<SolidTexture> solidTextures;         ///< JSON textures (Material::albedoTexture, emitTexture)
+    std::vector<Medium> media;                       ///< constant-density media (JSON scenes), at most gpu::MAX_MEDIA
     /// Problems that did not stop loading (e.g. an unsupported glTF extension that is only used),
     /// one line each, "<file>: <place>: <message>"; the command line prints them as warnings.
     std::vector<std::string> warnings;

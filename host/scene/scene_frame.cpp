@@ -36,6 +36,11 @@ void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why) {
                              " is outside the range of 32-bit floats relative to the camera");
         }
     }
+    for (Medium& m : scene.media) {  // local = T x_old + o = T (x_new + by) + o
+        m.toLocalOffset += m.toLocal * by;
+        m.lo -= by;
+        m.hi -= by;
+    }
     scene.origin += by;
 }
 

@@ -163,8 +163,8 @@ Scene parseSceneJson(std::string_view text, const std::filesystem::path& file, c
         std::map<std::string, std::uint32_t> index;
         scenejson::TextureReader textureReader(scene, file, options.allowPaths, textures);
         if (materials) scenejson::readMaterials(*materials, scene, index, textureReader);
+        scenejson::readObjects(objects, index, options, textureReader, scene);  // media have colours or textures too
         textureReader.finish();
-        scenejson::readObjects(objects, index, options, scene);
         return scene;
     };
     Scene scene;

@@ -74,7 +74,8 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
                               const Scene& scene) {
     json::Object o = v.object();
     const std::string type =
-        o.choice("type", {"sphere", "quad", "box", "triangle", "gltf", "point_light", "spot_light", "directional_light"});
+        o.choice("type", {"sphere", "quad", "box", "triangle", "gltf", "point_light", "spot_light", "directional_light",
+                          "constant_medium"});
 
     const json::Value matValue = o.required("material");
     const std::string matName = matValue.string();
@@ -292,7 +293,7 @@ void expectIncludes(const json::Value& v, const std::map<std::string, std::uint3
 }  // namespace
 
 void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
-                 const SceneJsonOptions& options, Scene& scene) {
+                 const SceneJsonOptions& options, TextureReader& textures, Scene& scene) {
     GltfIncludes includes(scene, options.instancing, options.allowPaths);
     expectIncludes(v, index, scene, includes);
     for (const json::Value& item : v.array()) {
@@ -302,6 +303,10 @@ void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t
         }
         if (isPunctualObject(item)) {
             scene.punctualLights.push_back(readPunctual(item, scene));
+            continue;
+        }
+        if (objectType(item) == "constant_medium") {
+            scene.media.push_back(readMedium(item, textures, scene));
             continue;
         }
         for (const Shape& s : readObject(item, index, scene)) {

@@ -57,14 +57,19 @@ private:
     std::vector<std::uint32_t> depth_;  // per solid texture: checkers on its longest way to a colour
 };
 
+/// {"type": "constant_medium", "boundary": sphere or box, "density": d, "albedo": colour or
+/// texture} of "objects" (scenes/README.md "Media"): the medium, whose isotropic material it
+/// appends to Scene::materials. At most gpu::MAX_MEDIA per scene.
+Medium readMedium(const json::Value& v, TextureReader& textures, Scene& scene);
 /// "materials": name -> material, appended in file order; index maps a name to its position.
 /// Colours that may be textures are read through `textures`.
 void readMaterials(const json::Value& v, Scene& scene, std::map<std::string, std::uint32_t>& index, TextureReader& textures);
-/// "objects": appends world-space shapes and the light list; included glTF files through
+/// "objects": appends world-space shapes, media (their colours and textures read through
+/// `textures`) and the light list; included glTF files through
 /// GltfIncludes (each file read once; with instancing, meshes drawn twice or more stored once).
 /// Included files must resolve inside the scene's folder or options.allowPaths (file_references.h).
 void readObjects(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
-                 const SceneJsonOptions& options, Scene& scene);
+                 const SceneJsonOptions& options, TextureReader& textures, Scene& scene);
 
 /// "environment": file (resolved against sceneFile's folder, and inside it or `allowed`; read with
 /// core/image_io), strength, rotate_y. Image problems are reported at /environment/file.

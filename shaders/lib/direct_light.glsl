@@ -22,6 +22,7 @@
 #include "lib/bindings.glsl"
 #include "lib/environment.glsl"
 #include "lib/lights.glsl"
+#include "lib/media.glsl"
 #include "lib/traverse.glsl"
 #include "shared/bsdf.h"
 #include "shared/light_pick.h"
@@ -40,6 +41,9 @@ bool neeWeighted(Bsdf b) { return SAMPLER == SAMPLER_MIS || bsdfIsGlossy(b); }
 /// strategy number) and uLight in [0,1)^2 the point on it; 0 when the sample is occluded, finds no
 /// light or leaves below the surface. Counts the shadow ray in rays. sigma: the absorption coefficient
 /// of the glass the vertex lies in (HAS_ABSORPTION; 0 outside): the shadow ray's length attenuates.
+/// The shadow ray is attenuated by the media it crosses too (HAS_MEDIA: their transmittance), from
+/// surface vertices and from scattering points inside a medium (b MAT_ISOTROPIC, prim
+/// VKP_NO_PRIM) alike.
 vec3 directLight(Bsdf b, vec3 beta, vec3 sigma, vec3 x, vec3 xo, uint prim, GpuPrim p, float uStrategy, vec2 uLight,
                  inout uint rays, inout uint passes) {
     float pEnv = envPickProb();
@@ -66,6 +70,7 @@ vec3 directLight(Bsdf b, vec3 beta, vec3 sigma, vec3 x, vec3 xo, uint prim, GpuP
     float w = (neeWeighted(b) && !r.delta) ? powerHeuristic(pl, pdfBsdf(b, r.dir)) : 1.0f;
     vec3 contribution = evalBsdf(b, beta, r.dir) * r.le * (w / pl);
     if (HAS_ABSORPTION && any(greaterThan(sigma, vec3(0.0f)))) contribution *= exp(-sigma * r.shadowLength);
+    if (HAS_MEDIA) contribution *= mediaTransmittance(xo, r.shadowDir, r.shadowLength, passes);
     rays++;
     if (traceAny(xo, r.shadowDir, 0.0f, r.shadowLength, passes)) return vec3(0.0f);
     return contribution;

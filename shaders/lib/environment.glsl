@@ -42,18 +42,25 @@ vec3 envRadiance(vec3 d) {
     return vec3(L.x, L.y, L.z);
 }
 
+/// n = 0: a point inside a medium, where every direction is open (HAS_MEDIA only).
+bool envNoNormal(vec3 n) { return HAS_MEDIA && dot(n, n) == 0.0f; }
+
 /// Solid-angle pdf with which sampleEnv(n, .) produces d (without the pick probability).
 float pdfEnv(vec3 d, vec3 n) {
     if (!envOn()) return 0.0f;
-    if (!envMapOn()) return pdfCosineHemisphere(dot(d, n));
+    if (!envMapOn()) return envNoNormal(n) ? pdfUniformSphere() : pdfCosineHemisphere(dot(d, n));
     return pdfEnvMap(frame.envSize.x, frame.envSize.y, envRotation(), d);
 }
 
-/// A direction towards the environment from a vertex with normal n, with u in [0,1)^2; its
-/// solid-angle pdf in pdf (0: none).
+/// A direction towards the environment from a vertex with normal n (0: inside a medium), with u
+/// in [0,1)^2; its solid-angle pdf in pdf (0: none).
 vec3 sampleEnv(vec3 n, vec2 u, out float pdf, inout uint passes) {
     pdf = 0.0f;
     if (!envOn()) return vec3(0.0f, 1.0f, 0.0f);
+    if (!envMapOn() && envNoNormal(n)) {
+        pdf = pdfUniformSphere();
+        return sampleUniformSphere(u);
+    }
     if (!envMapOn()) {
         vec3 d = sampleLambertian(n, u);
         pdf = pdfCosineHemisphere(dot(d, n));

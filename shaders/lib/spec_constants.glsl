@@ -53,6 +53,8 @@ const bool HAS_LAMBERTIAN = (MATERIALS & (1u << MAT_LAMBERTIAN)) != 0u;
 const bool HAS_METAL = (MATERIALS & (1u << MAT_METAL)) != 0u;
 const bool HAS_DIELECTRIC = (MATERIALS & (1u << MAT_DIELECTRIC)) != 0u;
 const bool HAS_PBR = (MATERIALS & (1u << MAT_PBR)) != 0u;  // glTF metallic-roughness materials
+// Constant-density media (lib/media.glsl): their phase function is the material type MAT_ISOTROPIC.
+const bool HAS_MEDIA = (MATERIALS & (1u << MAT_ISOTROPIC)) != 0u;
 // Kinds in the light list, compiled apart: on lavapipe every compiled-in light kind's sampling code
 // runs at every vertex (docs/design.md).
 const bool HAS_SPHERE_LIGHTS = (LIGHTS & (1u << PRIM_SPHERE)) != 0u;

@@ -16,7 +16,9 @@
 //
 // Conventions: dIn is the unit direction of the ray that arrives (towards the surface); n is the
 // unit geometric normal on the side it arrives from (dot(dIn, n) <= 0); dir is a unit direction
-// leaving the surface. A glTF material shades in the frame of its shading normal (lib/surface.glsl)
+// leaving the surface. MAT_ISOTROPIC is the phase function at a scattering point inside a medium
+// (shared/medium.h): there is no surface, n is 0, every direction is allowed (bsdfCosine 1) and
+// "f cos" is the phase function times the albedo. A glTF material shades in the frame of its shading normal (lib/surface.glsl)
 // and gets f = 0 for directions below the geometric surface, so no light leaks through.
 //
 // The includer may define, before including this file:
@@ -29,6 +31,7 @@
 #define VKP_BSDF_H
 #include "gpu_types.h"
 #include "layers.h"
+#include "medium.h"
 #include "microfacet.h"
 #include "onb.h"
 #include "sample_stream.h"
@@ -51,11 +54,11 @@
 VKP_BEGIN
 
 struct Bsdf {
-    uint type;          ///< MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC or MAT_PBR (shared/kinds.h)
+    uint type;          ///< MAT_LAMBERTIAN, MAT_METAL, MAT_DIELECTRIC, MAT_PBR or MAT_ISOTROPIC (shared/kinds.h)
     vec3 n;             ///< unit geometric normal on the side the ray arrives from
     vec3 dIn;           ///< unit direction of the arriving ray
     bool frontFace;     ///< the ray arrives on the geometric front (outside)
-    vec3 albedo;        ///< lambertian and metal reflectance (linear RGB)
+    vec3 albedo;        ///< lambertian and metal reflectance, a medium's single-scattering albedo (linear RGB)
     float param;        ///< metal: fuzz radius; dielectric: index of refraction
     bool fresnelExact;  ///< dielectric: exact Fresnel instead of Schlick's
     Onb frame;          ///< MAT_PBR: the shading frame, z = the shading normal
@@ -135,7 +138,8 @@ VKP_FN bool bsdfIsGlossy(Bsdf b) { return VKP_HAS_GLOSSY_BSDF && b.type == MAT_P
 
 /// The numbers sampleBsdf(b, u, ...) reads, drawn from the sample stream in its layout
 /// (shared/sample_stream.h): lambertian (0, pair 0), pbr (single, pair 0), metal three singles,
-/// dielectric one single. A non-delta vertex draws its strategy number (single 0) before these.
+/// dielectric one single; isotropic (a medium) as lambertian. A non-delta vertex draws its strategy
+/// number (single 0) before these.
 VKP_FN vec3 bsdfNumbers(Bsdf b, INOUT(SampleStream) smp) {
     if (VKP_HAS_MATERIAL(MAT_METAL) && b.type == MAT_METAL) {
         float u0 = sampleNext(smp);
@@ -163,6 +167,7 @@ VKP_FN float bsdfCosine(Bsdf b, vec3 dir) {
         return belowGeometric(b, dir) ? 0.0f : c;
     }
     if (bsdfIsDelta(b)) return 0.0f;
+    if (VKP_HAS_MATERIAL(MAT_ISOTROPIC) && b.type == MAT_ISOTROPIC) return 1.0f;  // no surface: every direction
     return dot(dir, b.n);
 }
 
@@ -177,6 +182,7 @@ VKP_FN vec3 evalBsdf(Bsdf b, vec3 scale, vec3 dir) {
         return scale * evalGltfBrdf(b.gltf, b.v, l) * l.z;
     }
     if (bsdfIsDelta(b)) return vec3(0.0f);
+    if (VKP_HAS_MATERIAL(MAT_ISOTROPIC) && b.type == MAT_ISOTROPIC) return scale * b.albedo * pdfIsotropicPhase();
     float c = dot(dir, b.n);
     return (c > 0.0f) ? scale * b.albedo * VKP_INV_PI * c : vec3(0.0f);
 }
@@ -188,6 +194,7 @@ VKP_FN float pdfBsdf(Bsdf b, vec3 dir) {
         return pdfGltfBrdf(b.gltf, b.v, toLocal(b.frame, dir));
     }
     if (bsdfIsDelta(b)) return 0.0f;
+    if (VKP_HAS_MATERIAL(MAT_ISOTROPIC) && b.type == MAT_ISOTROPIC) return pdfIsotropicPhase();
     return pdfCosineHemisphere(dot(dir, b.n));
 }
 
@@ -222,6 +229,12 @@ VKP_FN bool sampleBsdf(Bsdf b, vec3 u, OUT(vec3) dir, OUT(float) pdf, OUT(vec3) 
         dir = toWorld(b.frame, l);
         if (!(l.z > 0.0f) || !(pdf > 0.0f) || belowGeometric(b, dir)) return false;
         weight = evalGltfBrdf(b.gltf, b.v, l) * (l.z / pdf);
+        return true;
+    }
+    if (VKP_HAS_MATERIAL(MAT_ISOTROPIC) && b.type == MAT_ISOTROPIC) {
+        dir = sampleIsotropicPhase(vec2(u.y, u.z));
+        pdf = pdfIsotropicPhase();
+        weight = b.albedo;  // albedo p / p
         return true;
     }
     dir = sampleLambertian(b.n, vec2(u.y, u.z));

@@ -125,6 +125,8 @@ struct GpuFrame {
     uvec4 envSize;    // x, y: width, height of the environment map (0: none, the constant
                       // background is the environment); z, w: 0
     uvec4 punctual;   // x: number of punctual lights (shared/punctual_light.h); y, z, w: 0
+    uvec4 media;      // x: number of constant-density media (shared/medium.h), y: texel of the
+                      // first GpuMedium record in the materials buffer; z, w: 0
 };
 
 // Push constants of one dispatch: samples [sampleStart, sampleStart + sampleCount) of every pixel

@@ -22,7 +22,9 @@ const uint MAT_METAL = 1u;
 const uint MAT_DIELECTRIC = 2u;
 const uint MAT_DIFFUSE_LIGHT = 3u;
 const uint MAT_PBR = 4u;  // glTF metallic-roughness BRDF (shared/microfacet.h)
-const uint MAT_TYPE_COUNT = 5u;
+const uint MAT_ISOTROPIC = 5u;  // the isotropic phase function of a constant_medium (shared/medium.h):
+                                // no surface uses it; its bit in MATERIALS compiles media in
+const uint MAT_TYPE_COUNT = 6u;
 const uint MAT_TYPE_MASK = 15u;  // the type's bits of the flags word
 // Flag bits above the type.
 const uint MATF_TWO_SIDED = 16u;      // diffuse_light: both faces emit
@@ -46,6 +48,12 @@ const int TURBULENCE_OCTAVES = 7;    // the book's turb(p, 7)
 // the way from a material's texture to the texture that colours the point (the loader refuses
 // deeper nesting, and cycles).
 const uint STEX_MAX_DEPTH = 16u;
+
+// ---- Boundaries of constant-density media (GpuMedium::params.y; shared/medium.h) -----------------
+const uint MEDIUM_SPHERE = 0u;  // the unit ball of the medium's local space (|x| <= 1)
+const uint MEDIUM_BOX = 1u;     // the cube [-1, 1]^3 of its local space
+// Media are tested one after the other along every ray (no BVH over them): at most this many.
+const uint MAX_MEDIA = 64u;
 
 // ---- Layers over the glTF BRDF (specialization constant LAYERS; shared/layers.h) ----------------
 const uint LAYER_COAT = 1u;   // KHR_materials_clearcoat
@@ -91,7 +99,7 @@ namespace vkp::gpu {
 /// Names of the kinds above, indexed by their value (variant names, messages).
 inline constexpr const char* kPrimKindNames[] = {"sphere", "quad", "triangle", "instance"};
 inline constexpr const char* kPunctualKindNames[] = {"point", "spot", "directional"};
-inline constexpr const char* kMaterialTypeNames[] = {"lambertian", "metal", "dielectric", "diffuse_light", "pbr"};
+inline constexpr const char* kMaterialTypeNames[] = {"lambertian", "metal", "dielectric", "diffuse_light", "pbr", "isotropic"};
 static_assert(sizeof(kPrimKindNames) / sizeof(kPrimKindNames[0]) == PRIM_KIND_COUNT, "a name per primitive kind");
 static_assert(sizeof(kPunctualKindNames) / sizeof(kPunctualKindNames[0]) == PUNCTUAL_KIND_COUNT, "a name per punctual kind");
 static_assert(sizeof(kMaterialTypeNames) / sizeof(kMaterialTypeNames[0]) == MAT_TYPE_COUNT, "a name per material type");

@@ -77,6 +77,8 @@ std::vector<Case> cases() {
          unit(vec3(-0.2f, 0.4f, -0.9f))},
         {"pbr, grazing view", material(gpu::MAT_PBR, vec3(0.6f, 0.7f, 0.8f), 0.0f, 0.0f, 0.4f, 0.5f), kN,
          unit(-kN * 0.05f + unit(glm::cross(kN, vec3(1.0f, 0.0f, 0.0f))))},
+        // A medium's phase function (shared/medium.h): no surface, the whole sphere.
+        {"isotropic phase (medium)", material(gpu::MAT_ISOTROPIC, vec3(0.9f, 0.6f, 0.3f)), kN, unit(vec3(0.1f, -0.4f, -0.9f))},
     };
 }
 
@@ -183,7 +185,7 @@ TEST(BsdfStats, ShadingNormalNeverLeaksBelowTheGeometricSurface) {
 }
 
 // (e) The numbers each BSDF draws: lambertian one pair, pbr a single and a pair, metal three
-// singles, dielectric one single, at the places shared/sample_stream.h documents.
+// singles, dielectric one single, isotropic one pair, at the places shared/sample_stream.h documents.
 TEST(BsdfStats, NumbersFollowTheSampleStreamLayout) {
     const vec3 dIn = unit(vec3(0.0f, 0.0f, -1.0f));
     struct Expect {
@@ -191,7 +193,7 @@ TEST(BsdfStats, NumbersFollowTheSampleStreamLayout) {
         std::uint32_t singles, pairs;
     };
     for (const Expect e : {Expect{gpu::MAT_LAMBERTIAN, 0, 1}, Expect{gpu::MAT_PBR, 1, 1}, Expect{gpu::MAT_METAL, 3, 0},
-                           Expect{gpu::MAT_DIELECTRIC, 1, 0}}) {
+                           Expect{gpu::MAT_DIELECTRIC, 1, 0}, Expect{gpu::MAT_ISOTROPIC, 0, 1}}) {
         SCOPED_TRACE(gpu::kMaterialTypeNames[e.type]);
         const gpu::Bsdf b = gpu::makeBsdf(material(e.type, vec3(0.5f), 1.5f), kN, kN, dIn, true);
         gpu::SampleStream s = gpu::sampleStreamInit(77, 5, 3, false);

@@ -201,6 +201,34 @@ std::vector<Case> cases() {
          "/materials/m/albedo/file", "outside"},
         {"texture_image_filter", withMaterials(R"({"m":{"type":"lambertian","albedo":{"type":"image","file":"a.png","filter":"cubic"}}})"),
          "/materials/m/albedo/filter", "must be one of \"linear\", \"nearest\""},
+        // media (scenes/README.md "Media")
+        {"medium_boundary_quad", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"boundary":{"type":"quad","Q":[0,0,0],"u":[1,0,0],"v":[0,1,0]}})"),
+         "/objects/0/boundary/type", "a medium's boundary must be a \"sphere\" or a \"box\" (closed and convex), not a \"quad\""},
+        {"medium_boundary_missing", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1]})"),
+         "/objects/0/boundary", "missing required key"},
+        {"medium_boundary_material", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":1,"material":"m"}})"),
+         "/objects/0/boundary/material", "unknown key (allowed here: type, transform, center, radius)"},
+        {"medium_density_zero", withObject(R"({"type":"constant_medium","density":0,"albedo":[1,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":1}})"),
+         "/objects/0/density", "must be > 0 (got 0)"},
+        {"medium_density_underflow", withObject(R"({"type":"constant_medium","density":1e-60,"albedo":[1,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":1}})"),
+         "/objects/0/density", "must be a positive 32-bit float"},
+        {"medium_albedo_range", withObject(R"({"type":"constant_medium","density":1,"albedo":[1.5,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":1}})"),
+         "/objects/0/albedo/0", "must be in [0, 1]"},
+        {"medium_albedo_texture_unknown", withObject(R"({"type":"constant_medium","density":1,"albedo":"smoke","boundary":{"type":"sphere","center":[0,0,0],"radius":1}})"),
+         "/objects/0/albedo", "no texture named \"smoke\" in /textures"},
+        {"medium_box_inverted", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"boundary":{"type":"box","min":[0,0,0],"max":[1,-1,1]}})"),
+         "/objects/0/boundary/max/1", "must be > min[1]"},
+        {"medium_sphere_radius", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":0}})"),
+         "/objects/0/boundary/radius", "must be > 0 (got 0)"},
+        {"medium_material_key", withObject(R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"material":"m","boundary":{"type":"sphere","center":[0,0,0],"radius":1}})"),
+         "/objects/0/material", "unknown key (allowed here: type, boundary, density, albedo)"},
+        {"medium_too_many", withObjects("[" + [] {
+             std::string list;
+             for (int i = 0; i < 65; ++i)
+                 list += std::string(i ? "," : "") + R"({"type":"constant_medium","density":1,"albedo":[1,1,1],"boundary":{"type":"sphere","center":[0,0,0],"radius":1}})";
+             return list;
+         }() + "]"),
+         "/objects/64", "too many media: at most 64"},
         // objects
         {"objects_type", withObjects("{}"), "/objects", "must be an array (got object"},
         {"object_type", withObjects("[" + kSphere + ",3]"), "/objects/1", "must be an object (got 3)"},

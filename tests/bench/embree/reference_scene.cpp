@@ -22,6 +22,7 @@ const char* typeName(MaterialType t) {
         case MaterialType::Dielectric: return "dielectric";
         case MaterialType::DiffuseLight: return "diffuse_light";
         case MaterialType::Pbr: return "pbr (glTF)";
+        case MaterialType::Isotropic: return "isotropic (a medium)";
     }
     return "?";
 }
@@ -40,6 +41,7 @@ void checkSupported(const Scene& scene) {
     if (scene.environment.hasMap()) refuse(scene, "an environment map");
     if (scene.render.background != glm::vec3(0.0f)) refuse(scene, "a non-black background");
     if (!scene.punctualLights.empty()) refuse(scene, "punctual light " + scene.punctualLights[0].name);
+    if (!scene.media.empty()) refuse(scene, "the medium at " + scene.media[0].name);
     for (const Shape& s : scene.shapes) {  // the materials shapes use (a scene may define others)
         const Material& m = scene.materials.at(s.material);
         if (m.type != MaterialType::Lambertian && m.type != MaterialType::DiffuseLight)
