@@ -85,49 +85,20 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     return s;
 }
 
-/// Trace the path's current ray and scatter at what it finds: a surface, or a point inside a
-/// medium where free-flight sampling (lib/media.glsl) stops it first. Returns true when the path
-/// has ended (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
-bool bounce(inout PathState s, inout uint rays, inout uint passes) {
-    rays++;
-    s.depth++;
-    sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
-    SurfaceHit h;
-    bool found = findSurface(s.o, s.d, h, passes);
-    float tEnd = found ? distance(s.o, h.x) : VKP_FAR;  // where the segment ends
-    // Media: the ray scatters at distance tEnd inside one (the weight, transmittance x density /
-    // free-flight density, is 1; the albedo comes with the phase function's sample below), or it
-    // passes them all with the probability their transmittance is, weight 1 too.
-    uint medium = 0u;
-    bool inMedium = HAS_MEDIA && sampleMediumEvent(s.o, s.d, tEnd, s.smp, tEnd, medium, passes);
-    if (!found && !inMedium) {
-        // Inside absorbing glass an escaping ray travels forever: nothing is left of it.
-        if (!(HAS_ABSORPTION && any(greaterThan(s.sigma, vec3(0.0f)))))
-            s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
-        return true;
-    }
-    // Beer-Lambert along the segment inside absorbing glass ("Ray Tracing: The Next Week" sec. 9's
-    // constant density, absorbing only): the fraction exp(-sigma t) of the light is left.
-    if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * tEnd);
-    if (!inMedium) {
-        // The light this ray found, weighted against the light sample that could have found it
-        // from the previous vertex.
-        if (HAS_EMITTERS && s.countEmission)
-            s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
-        if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
-    }
+/// A new vertex of the path, before it scatters: what its ray found has been counted. Returns true
+/// when the path ends there (max_depth rays per path).
+bool lastVertex(inout PathState s) {
     s.countEmission = true;
     s.prevBsdfPdf = 0.0f;
-    if (s.depth >= frame.size.z) return true;  // max_depth rays per path
+    return s.depth >= frame.size.z;
+}
 
-    // The vertex: a surface point with its BSDF, or a point in a medium with its phase function
-    // (no normal, no offset: nothing to escape from).
-    vec3 x = inMedium ? s.o + tEnd * s.d : h.x;
-    Bsdf b = inMedium ? mediumBsdf(medium, x, s.d) : makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace);
+/// Scatter at the path's new vertex: a surface point x (BSDF b, offset origin xo, primitive prim of
+/// hit h) or a point x in a medium (b its phase function, xo = x, prim VKP_NO_PRIM; h unused):
+/// next-event estimation, the next direction, Russian roulette. Returns true when the path ends.
+bool scatter(inout PathState s, Bsdf b, vec3 x, vec3 xo, uint prim, SurfaceHit h, inout uint rays, inout uint passes) {
     float uStrategy = bsdfIsDelta(b) ? 0.0f : sampleNext(s.smp);  // picks a light, or the mixture's half
     vec3 uBsdf = bsdfNumbers(b, s.smp);
-    vec3 xo = inMedium ? x : spawnFrom(h, h.ns);
-    uint prim = inMedium ? VKP_NO_PRIM : h.prim;
     bool nee = !bsdfIsDelta(b) && neeOn();
     if (nee || (punctualOn() && !bsdfIsDelta(b)))  // punctual lights: next-event estimation under every sampler
         s.radiance += directLight(b, s.throughput, s.sigma, x, xo, prim, h.p, uStrategy, nee ? sampleNext2(s.smp) : vec2(0.0f), rays, passes);
@@ -160,6 +131,48 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         s.throughput /= q;
     }
     return false;
+}
+
+/// Trace the path's current ray and scatter at what it finds: a surface, or a point inside a
+/// medium where free-flight sampling (lib/media.glsl) stops it first. Returns true when the path
+/// has ended (escaped, absorbed, hit a light, stopped by Russian roulette or max_depth).
+bool bounce(inout PathState s, inout uint rays, inout uint passes) {
+    rays++;
+    s.depth++;
+    sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
+    SurfaceHit h;
+    bool found = findSurface(s.o, s.d, h, passes);
+    if (HAS_MEDIA) {
+        // The ray scatters at distance t inside a medium before the surface (weight 1: the
+        // transmittance times the density over the free-flight density; the albedo comes with
+        // the phase function's sample), or passes every medium (weight 1 too: it does so with the
+        // probability their transmittance is).
+        float t = found ? distance(s.o, h.x) : VKP_FAR;
+        uint medium;
+        if (sampleMediumEvent(s.o, s.d, t, s.smp, t, medium, passes)) {
+            if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * t);
+            if (lastVertex(s)) return true;
+            vec3 x = s.o + t * s.d;  // no surface to leave: no offset
+            return scatter(s, mediumBsdf(medium, x, s.d), x, x, VKP_NO_PRIM, h, rays, passes);
+        }
+    }
+    if (!found) {
+        // Inside absorbing glass an escaping ray travels forever: nothing is left of it.
+        if (!(HAS_ABSORPTION && any(greaterThan(s.sigma, vec3(0.0f)))))
+            s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
+        return true;
+    }
+    // Beer-Lambert along the segment inside absorbing glass ("Ray Tracing: The Next Week" sec. 9's
+    // constant density, absorbing only): the fraction exp(-sigma t) of the light is left.
+    if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * distance(s.o, h.x));
+    // The light this ray found, weighted against the light sample that could have found it from
+    // the previous vertex.
+    if (HAS_EMITTERS && s.countEmission)
+        s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
+    if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
+    if (lastVertex(s)) return true;
+    return scatter(s, makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace), h.x, spawnFrom(h, h.ns), h.prim, h, rays,
+                   passes);
 }
 
 void main() {
