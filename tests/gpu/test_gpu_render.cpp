@@ -333,7 +333,8 @@ TEST(GpuRender, NoNonFiniteSamplesOnShippedScenes) {
     VKP_REQUIRE_DEVICE(dev);
     for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "cornell-biglight.json", "spheres-book1.json", "env-sky.json",
                              "lamps.json", "next-week/checkered-spheres.json", "next-week/earth.json", "next-week/perlin-spheres.json",
-                             "next-week/quads.json", "next-week/simple-light.json", "next-week/cornell-box.json"}) {
+                             "next-week/quads.json", "next-week/simple-light.json", "next-week/cornell-box.json",
+                             "next-week/bouncing-spheres.json"}) {
         for (Sampler s : kAllSamplers) {
             TestRender r = makeRender(dev, scenesDir() / name, 32, 24, s);
             r.renderer->addSamples(8);
@@ -355,7 +356,8 @@ namespace {
 // the same samples as the pipeline with every feature compiled in.
 TEST(GpuRender, SceneVariantMatchesFullVariant) {
     VKP_REQUIRE_DEVICE(dev);
-    for (const char* name : {"cornell-book3.json", "spheres-book1.json", "lamps.json", "next-week/simple-light.json"}) {
+    for (const char* name : {"cornell-book3.json", "spheres-book1.json", "lamps.json", "next-week/simple-light.json",
+                             "next-week/bouncing-spheres.json"}) {
         Scene scene = loadSceneJson(scenesDir() / name);
         scene.camera.width = 24;
         scene.camera.height = 16;
