@@ -57,7 +57,8 @@ struct PathState {
 };
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
-/// over the pixel's square and, if the variant has it, a point on the defocus disk.
+/// over the pixel's square and, if the variant has them, a point on the defocus disk and the time
+/// in [0,1) at which the path sees the scene (motion blur: gTime, "Ray Tracing: The Next Week" sec. 2).
 PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     PathState s;
     s.smp = sampleStreamInit(pixel, sampleIndex, frame.size.w, push.adaptive.x != 0u);
@@ -73,6 +74,9 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
         s.o += disk.x * vec3(frame.defocusU.x, frame.defocusU.y, frame.defocusU.z) +
                disk.y * vec3(frame.defocusV.x, frame.defocusV.y, frame.defocusV.z);
     }
+    // Motion blur: the path's time, kept by every ray of the path (fetchPrim, lib/bindings.glsl).
+    // Drawing it changes no other number of the stream (sampleTime).
+    if (HAS_MOTION) gTime = sampleTime(s.smp);
     s.d = normalize(target - s.o);
     s.throughput = vec3(1.0f);
     s.radiance = vec3(0.0f);

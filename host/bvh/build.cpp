@@ -12,7 +12,9 @@
 
 namespace vkp {
 
-Aabb shapeBounds(const Shape& s) {
+namespace {
+/// The box of s where it is (shapeBounds without motion).
+Aabb staticBounds(const Shape& s) {
     Aabb b;
     switch (s.type) {
         case ShapeType::Sphere: {
@@ -33,6 +35,15 @@ Aabb shapeBounds(const Shape& s) {
             b.grow(s.p2);
             break;
     }
+    return b;
+}
+}  // namespace
+
+Aabb shapeBounds(const Shape& s) {
+    Aabb b = staticBounds(s);
+    // A moving shape's positions go monotonically (in float too: rounding is monotone) from time 0
+    // to shapeAt(s, 1): the union of both boxes holds it at every time in [0, 1).
+    if (s.moves()) b.grow(staticBounds(shapeAt(s, 1.0f)));
     return b;
 }
 

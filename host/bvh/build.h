@@ -44,7 +44,8 @@ struct Aabb {
 
 /// Bounding box of one shape: sphere centre +- |radius| (a negative radius, the book's hollow glass
 /// trick, has the same box), quad's 4 corners, triangle's 3 vertices. Not padded: a flat box is
-/// hit by the robust slab test (shared/intersect.h).
+/// hit by the robust slab test (shared/intersect.h). A moving shape (Shape::velocity, motion blur)
+/// gets the union of its boxes at times 0 and 1 (shapeAt), which holds it at every time between.
 Aabb shapeBounds(const Shape& s);
 
 /// Builder parameters. Costs are those of the SAH: C(split) = Ct + Ci (A_L N_L + A_R N_R) / A,

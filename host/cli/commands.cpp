@@ -1,5 +1,6 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -291,9 +292,12 @@ int runInfo(const CliArgs& a) {
                 scene.render.spp, scene.render.maxDepth, scene.render.seed);
     std::printf("frame        camera-relative: origin at the camera, the file's point (%.17g, %.17g, %.17g)\n",
                 scene.origin.x, scene.origin.y, scene.origin.z);
-    std::printf("primitives   %zu (%zu spheres, %zu quads, %zu triangles)\n", scene.shapes.size(),
+    const std::size_t moving = std::size_t(std::count_if(scene.shapes.begin(), scene.shapes.end(), [](const Shape& s) { return s.moves(); }));
+    std::printf("primitives   %zu (%zu spheres, %zu quads, %zu triangles)", scene.shapes.size(),
                 countShapes(scene, ShapeType::Sphere), countShapes(scene, ShapeType::Quad),
                 countShapes(scene, ShapeType::Triangle));
+    if (moving) std::printf(", %zu moving (motion blur)", moving);
+    std::printf("\n");
     std::size_t emitters = 0;
     for (std::uint32_t l : scene.lights) emitters += scene.materials[scene.shapes[l].material].emits();
     std::printf("lights       %zu sampled objects (%zu emitting)", scene.lights.size(), emitters);
@@ -316,7 +320,8 @@ int runInfo(const CliArgs& a) {
     std::uint64_t geometry = 0;
     for (const BufferSize& s : arrays.sizes())
         if (s.binding->binding == VKP_BINDING_NODES || s.binding->binding == VKP_BINDING_PRIMS ||
-            s.binding->binding == VKP_BINDING_INSTANCES || (f.vertexAttributes && s.binding->binding == VKP_BINDING_ATTRIBUTES))
+            s.binding->binding == VKP_BINDING_INSTANCES || (f.vertexAttributes && s.binding->binding == VKP_BINDING_ATTRIBUTES) ||
+            (f.motion && s.binding->binding == VKP_BINDING_MOTION))
             geometry += s.bytes;
     if (scene.instances.empty()) {
         std::printf("instancing   none (%s): geometry on the device %s\n",

@@ -72,6 +72,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_WORKGROUP_Y, "WORKGROUP_Y", workgroupY, ""},
         {VKP_SPEC_HAS_ABSORPTION, "HAS_ABSORPTION", absorption, on(absorption, "absorption")},
         {VKP_SPEC_HAS_SOLID_TEXTURES, "HAS_SOLID_TEXTURES", solidTextures, on(solidTextures, "json-textures")},
+        {VKP_SPEC_HAS_MOTION, "HAS_MOTION", motion, on(motion, "motion")},
     };
     static_assert(std::size(table) == VKP_SPEC_COUNT, "one entry per specialization constant");
     std::vector<SpecConstant> out(std::begin(table), std::end(table));
@@ -109,7 +110,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         f.emitters = f.defocus = f.environment = f.environmentMap = true;
         f.vertexAttributes = f.textures = f.extensionTextures = f.texCoord1 = f.alpha = f.instances = f.vertexColors = true;
         f.layers = gpu::LAYER_COAT | gpu::LAYER_SHEEN;
-        f.absorption = f.solidTextures = true;
+        f.absorption = f.solidTextures = f.motion = true;
         return f;
     }
     std::vector<bool> used(scene.materials.size(), false);
@@ -117,6 +118,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
         f.shapes |= bit(std::uint32_t(s.type));
         used[s.material] = true;
         if (s.sampled) f.lights |= bit(std::uint32_t(s.type));
+        f.motion |= s.moves();
     });
     for (const Medium& m : scene.media) used[m.material] = true;  // their isotropic materials: MAT_ISOTROPIC compiles media in
     if (!scene.punctualLights.empty()) f.lights |= bit(gpu::LIGHT_KIND_PUNCTUAL);

@@ -38,6 +38,7 @@ struct Features {
     std::uint32_t layers = 0;       ///< gpu::LAYER_* over some MAT_PBR material (shared/layers.h)
     bool absorption = false;        ///< some dielectric absorbs inside (Material::absorption)
     bool solidTextures = false;     ///< some material has a JSON texture (Material::albedoTexture, emitTexture)
+    bool motion = false;            ///< some shape moves (Shape::velocity: motion blur)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

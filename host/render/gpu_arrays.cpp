@@ -63,6 +63,13 @@ float sceneExtent(const FlatBvh& bvh) {
     return extent;
 }
 
+std::vector<gpu::GpuMotion> packMotion(const Scene& scene, const FlatBvh& bvh) {
+    std::vector<gpu::GpuMotion> out(bvh.prims.size(), gpu::GpuMotion{});
+    for (std::size_t i = 0; i < out.size(); ++i)
+        if (const Shape* s = primShape(scene, bvh, i)) out[i].v = glm::vec4(s->velocity, 0.0f);
+    return out;
+}
+
 GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOptions& options) {
     if (bvh.instances.size() != scene.instances.size())
         throw std::invalid_argument("packGpuArrays: the BVH was not built with the scene's instances (use buildSceneBvh)");
@@ -119,6 +126,9 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     a.attributes = a.features.vertexAttributes ? packVertexAttributes(scene, bvh) : std::vector<glm::uvec4>(1, glm::uvec4(0));
     a.instances = bvh.instances;  // two-level BVH; a token record when there are none (HAS_INSTANCES is then false)
     if (a.instances.empty()) a.instances.resize(1, gpu::GpuInstance{});
+    // Motion blur: every primitive's displacement, read by variants with HAS_MOTION only.
+    if (a.features.motion) a.motion = packMotion(scene, bvh);
+    if (a.motion.empty()) a.motion.resize(1, gpu::GpuMotion{});
     if (a.adaptive) a.activePixels = activePixelList(std::vector<std::uint8_t>(a.pixels(), 1), a.width, a.height);
     a.imageCount = scene.images.size();
     std::size_t big = 0;
@@ -146,6 +156,7 @@ std::span<const std::byte> GpuArrays::hostData(std::uint32_t binding) const {
         case VKP_BINDING_TEX_INFO: return bytesOf(texInfo);
         case VKP_BINDING_TEXELS: return bytesOf(texels);
         case VKP_BINDING_INSTANCES: return bytesOf(instances);
+        case VKP_BINDING_MOTION: return bytesOf(motion);
         case VKP_BINDING_ACTIVE: return bytesOf(activePixels);
         default: return {};  // written by the kernel: zeroed before the first dispatch
     }

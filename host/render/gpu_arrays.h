@@ -72,6 +72,7 @@ struct GpuArrays {
     std::vector<glm::uvec4> texInfo;      ///< texture headers and material texture records
     std::vector<std::uint32_t> texels;    ///< RGBA8 texels of every image
     std::vector<gpu::GpuInstance> instances;  ///< a token record when there are none
+    std::vector<gpu::GpuMotion> motion;       ///< per primitive (motion blur); a token texel without HAS_MOTION
     std::vector<std::uint32_t> activePixels;  ///< adaptive sampling: the first active-pixel list (every pixel)
     std::uint32_t width = 0, height = 0;
     bool adaptive = false;
@@ -111,6 +112,10 @@ std::vector<Band> planBands(const GpuArrays& arrays, const DeviceLimits& limits)
 /// kernel can hit: the root node's child boxes. 0 for an empty BVH. Its rayOffsetScale
 /// (shared/ray_offset.h) goes to the kernel in GpuFrame::origin.w.
 float sceneExtent(const FlatBvh& bvh);
+
+/// The motion of every primitive of bvh (GpuMotion, in the primitives' order): its shape's
+/// Shape::velocity; 0 for instances and the triangles of instanced meshes.
+std::vector<gpu::GpuMotion> packMotion(const Scene& scene, const FlatBvh& bvh);
 
 /// Packs everything the kernel reads for `scene` (with the BVH built for it by buildSceneBvh) and
 /// `options`. Throws std::invalid_argument when the BVH was not built with the scene's instances.

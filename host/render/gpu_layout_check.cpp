@@ -11,6 +11,7 @@ namespace vkp::gpu {
 
 static_assert(sizeof(GpuPrim) == GPU_PRIM_TEXELS * 16, "GpuPrim: GPU_PRIM_TEXELS vec4 texels");
 static_assert(sizeof(GpuNode) == GPU_NODE_TEXELS * 16, "GpuNode: GPU_NODE_TEXELS vec4 texels");
+static_assert(sizeof(GpuMotion) == GPU_MOTION_TEXELS * 16, "GpuMotion: GPU_MOTION_TEXELS vec4 texels");
 static_assert(sizeof(GpuMaterial) == GPU_MATERIAL_TEXELS * 16, "GpuMaterial: GPU_MATERIAL_TEXELS vec4 texels");
 static_assert(offsetof(GpuMaterial, m2) == 32 && offsetof(GpuMaterial, m3) == 48 && offsetof(GpuMaterial, m4) == 64 &&
                   offsetof(GpuMaterial, m5) == 80,

@@ -42,6 +42,7 @@ inline constexpr KernelBinding kKernelBindings[] = {
     {VKP_BINDING_TEX_INFO, BindingKind::UniformTexelBuffer, TexelFormat::Rgba32Uint, "uTexInfo"},
     {VKP_BINDING_TEXELS, BindingKind::UniformTexelBuffer, TexelFormat::R32Uint, "uTexels"},
     {VKP_BINDING_INSTANCES, BindingKind::UniformTexelBuffer, TexelFormat::Rgba32Uint, "uInstances"},
+    {VKP_BINDING_MOTION, BindingKind::UniformTexelBuffer, TexelFormat::Rgba32Uint, "uMotion"},
 };
 static_assert(std::size(kKernelBindings) == VKP_BINDING_COUNT, "one entry per binding of shared/kernel_interface.h");
 

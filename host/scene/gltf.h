@@ -53,6 +53,10 @@ struct GltfInclude {
     glm::dmat4 transform{1.0};              ///< applied after the file's node transforms
     std::optional<std::uint32_t> material;  ///< every triangle gets this Scene material instead of the file's
     std::optional<std::uint32_t> sceneIndex;  ///< default: the file's default scene
+    /// Motion blur: every triangle's displacement over the shutter interval (Shape::velocity,
+    /// world units). A moving include is never instanced: its triangles are placed in the world,
+    /// where each moves on its own (an instance's triangles are in object space).
+    glm::dvec3 velocity{0.0};
 };
 
 /// The glTF files a JSON scene includes (objects {"type": "gltf", ...}). Each distinct (canonical
@@ -61,7 +65,8 @@ struct GltfInclude {
 /// a mesh that the file draws at least twice in all (nodes using it x includes of the file) and
 /// that does not emit is stored once in object space (Scene::meshes), with one Scene::instances
 /// entry per node and include (include transform x node world matrix); every other mesh (and
-/// every mesh without instancing) is placed in the world per include, emissive triangles as lights.
+/// every mesh without instancing, and every mesh of a moving include) is placed in the world per
+/// include, emissive triangles as lights.
 class GltfIncludes {
 public:
     /// scene receives every include; it is kept by reference and must not move while this lives.
@@ -80,7 +85,8 @@ public:
 
 private:
     struct File;
-    using Key = std::tuple<std::string, std::int64_t, std::int64_t>;  ///< canonical path, scene, material (-1: none)
+    /// canonical path, scene, material (-1: none), velocity (a moving include is placed apart)
+    using Key = std::tuple<std::string, std::int64_t, std::int64_t, double, double, double>;
     static Key key(const std::filesystem::path& file, const GltfInclude& include);
     Scene& scene_;
     bool instancing_;

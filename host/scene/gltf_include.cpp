@@ -23,7 +23,8 @@ GltfIncludes::Key GltfIncludes::key(const std::filesystem::path& file, const Glt
     std::filesystem::path canonical = std::filesystem::canonical(file, ec);
     if (ec) canonical = file.lexically_normal();
     return {canonical.string(), include.sceneIndex ? std::int64_t(*include.sceneIndex) : -1,
-            include.material ? std::int64_t(*include.material) : -1};
+            include.material ? std::int64_t(*include.material) : -1, include.velocity.x, include.velocity.y,
+            include.velocity.z};
 }
 
 void GltfIncludes::expect(const std::filesystem::path& file, const GltfInclude& include) {
@@ -44,7 +45,11 @@ void GltfIncludes::append(const std::filesystem::path& file, const GltfInclude& 
     }
     Scene ignoredWarnings;  // a later include repeats the first one's warnings about nodes
     const gltf::Instances inst = gltf::traverse(*f->doc, include.sceneIndex, include.transform, first ? scene_ : ignoredWarnings);
-    gltf::appendInstances(*f->doc, inst, *f->state, instancing_, std::max<std::uint32_t>(f->expected, 1), scene_);
+    // Motion blur moves world-space triangles: a moving include is not instanced.
+    const bool moving = include.velocity != glm::dvec3(0.0);
+    const std::size_t firstShape = scene_.shapes.size();
+    gltf::appendInstances(*f->doc, inst, *f->state, instancing_ && !moving, std::max<std::uint32_t>(f->expected, 1), scene_);
+    for (std::size_t i = firstShape; i < scene_.shapes.size(); ++i) scene_.shapes[i].velocity = glm::vec3(include.velocity);
     gltf::appendLights(*f->doc, inst, scene_);
     // The last announced include: the document is no longer needed (an include not announced would
     // read the file again, as a file of its own).

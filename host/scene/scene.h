@@ -121,7 +121,7 @@ struct Material {
 /// Values are the kernel's PRIM_* (shaders/shared/kinds.h).
 enum class ShapeType : std::uint32_t { Sphere = gpu::PRIM_SPHERE, Quad = gpu::PRIM_QUAD, Triangle = gpu::PRIM_TRIANGLE };
 
-/// One primitive in world space (its transform already applied).
+/// One primitive in world space (its transform already applied), where it is at time 0.
 ///  - Sphere:   p0 = centre, radius
 ///  - Quad:     p0 = Q, p1 = u, p2 = v   (points Q + a u + b v, a,b in [0,1]; front face: u x v)
 ///  - Triangle: p0 = v0, p1 = v1, p2 = v2 (front face: counter-clockwise, (v1-v0) x (v2-v0))
@@ -129,6 +129,12 @@ struct Shape {
     ShapeType type = ShapeType::Sphere;
     glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};
     float radius = 0.0f;
+    /// Motion blur ("Ray Tracing: The Next Week", sec. 2): the displacement over the shutter
+    /// interval (world units). At time t in [0,1) the shape is moved by t velocity (its positions:
+    /// a sphere's centre, a quad's Q, a triangle's vertices; shapeAt). 0: it does not move. JSON
+    /// scenes only (a sphere's "center1", any object's "motion"); always 0 in InstancedMesh.
+    glm::vec3 velocity{0.0f};
+    bool moves() const { return velocity.x != 0.0f || velocity.y != 0.0f || velocity.z != 0.0f; }
     std::uint32_t material = 0;  ///< index into Scene::materials
     bool sampled = false;        ///< in the light list: emits, or "sample": true
     /// Triangles from glTF meshes: index into Scene::triangleVertices (their shading attributes);
@@ -393,7 +399,7 @@ inline bool allFinite(glm::vec3 p) { return std::isfinite(p.x) && std::isfinite(
 /// 32-bit floats relative to the camera" if a moved position overflows.
 void moveOrigin(Scene& scene, glm::dvec3 by, std::string_view why);
 
-/// The box (in the scene's frame, double) of every placed shape and of every instance (the box
+/// The box (in the scene's frame, double) of every placed shape (a moving one at times 0 and 1) and of every instance (the box
 /// of its mesh's object-space box, placed: it may be looser than the placed triangles' own);
 /// lo > hi when there is none.
 std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene);
@@ -408,5 +414,9 @@ Camera framingCamera(const std::string& file, glm::dvec3 lo, glm::dvec3 hi, std:
 
 /// Surface area in world units^2: 4 pi r^2 (sphere), |u x v| (quad), |e1 x e2| / 2 (triangle).
 float shapeArea(const Shape& s);
+
+/// s where it is at time t (motion blur): its positions moved by t s.velocity in float, as the
+/// kernel moves them (shared/intersect.h primMoved); t = 1 gives the end of the shutter interval.
+Shape shapeAt(const Shape& s, float t);
 
 }  // namespace vkp

@@ -76,7 +76,10 @@ constexpr double kHuge = std::numeric_limits<double>::max();
 
 std::pair<glm::dvec3, glm::dvec3> sceneBounds(const Scene& scene) {
     glm::dvec3 lo(kHuge), hi(-kHuge);
-    for (const Shape& s : scene.shapes) growByShape(s, lo, hi);
+    for (const Shape& s : scene.shapes) {
+        growByShape(s, lo, hi);
+        if (s.moves()) growByShape(shapeAt(s, 1.0f), lo, hi);  // and where it ends (motion blur)
+    }
     // An instanced mesh's object-space box once, then its eight corners per instance: a box of
     // the placed mesh, at the cost of the instances and not of their triangles.
     std::vector<std::pair<glm::dvec3, glm::dvec3>> meshBoxes(scene.meshes.size(), {glm::dvec3(kHuge), glm::dvec3(-kHuge)});

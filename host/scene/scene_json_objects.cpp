@@ -69,6 +69,34 @@ Shape transformed(const LocalShape& s, const ObjectTransform& xf, glm::dvec3 ori
     return out;
 }
 
+/// "motion": {"translate": [x, y, z]} (motion blur, "Ray Tracing: The Next Week" sec. 2): the
+/// object's displacement over the shutter interval, in world units, after its transform: at time
+/// t in [0, 1) it is where its transform puts it, moved by t (x, y, z).
+glm::dvec3 readMotion(const json::Value& v) {
+    json::Object o = v.object();
+    const glm::dvec3 translate = o.dvec3("translate");
+    o.finish();
+    return translate;
+}
+
+/// A shape's velocity (Shape::velocity) as a float, refused at `where` when it or the shape at
+/// the end of the shutter interval does not fit 32-bit floats relative to the camera.
+glm::vec3 checkedVelocity(const Shape& w, glm::dvec3 velocity, const json::Value& where, const std::string& type) {
+    const glm::vec3 v(velocity);
+    if (!allFinite(v)) where.fail("the " + type + "'s motion does not fit 32-bit floats (overflow)");
+    Shape end = w;
+    end.velocity = v;
+    end = shapeAt(end, 1.0f);
+    const double reach = allFinite(end.p0) && allFinite(end.p1) && allFinite(end.p2) ? shapeReach(end) : HUGE_VAL;
+    if (!(reach <= kMaxSceneCoordinate)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", reach);
+        where.fail("moves the " + type + " to " + text + " from the camera: its coordinates overflow 32-bit floats " +
+                   "(its bounding box must lie within +-1e38 of the camera at every time)");
+    }
+    return v;
+}
+
 /// One entry of "objects": its shapes in world space (a box gives six quads).
 std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, std::uint32_t>& index,
                               const Scene& scene) {
@@ -92,6 +120,9 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
 
     ObjectTransform xf;
     if (auto t = o.optional("transform")) xf = readTransform(*t);
+    // Motion blur: the displacement over the shutter interval, in world units (after the transform).
+    glm::dvec3 velocity(0.0);
+    std::optional<json::Value> center1Value;
 
     std::vector<LocalShape> local;
     if (type == "sphere") {
@@ -103,6 +134,10 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
             throw InputError(json::formatError(
                 v.file(), xf.nonUniformAt, "a sphere cannot be scaled non-uniformly (|x|, |y|, |z| must be equal)"));
         }
+        // The book's moving sphere: its centre goes from center (t = 0) to center1 (t = 1), both
+        // through the transform; a "motion" adds its translation to that.
+        center1Value = o.optional("center1");
+        if (center1Value) velocity += xf.map.point(center1Value->dvec3()) - xf.map.point(s.p0);
         local.push_back(s);
     } else if (type == "quad") {
         LocalShape s = makeQuad(o.dvec3("Q"), o.dvec3("u"), o.dvec3("v"));
@@ -130,6 +165,8 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         s.p2 = o.dvec3("v2");
         local.push_back(s);
     }
+    const std::optional<json::Value> motionValue = o.optional("motion");
+    if (motionValue) velocity += readMotion(*motionValue);
     o.finish();
 
     const bool sampled = emits || sample;
@@ -151,6 +188,7 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         if (w.type == ShapeType::Quad && parallelOrZero(w.p1, w.p2)) {
             o.required("transform").fail("makes the " + type + " degenerate (u x v = 0 in 32-bit floats)");
         }
+        if (motionValue || center1Value) w.velocity = checkedVelocity(w, velocity, motionValue ? *motionValue : *center1Value, type);
         // Zero-area triangles may exist (never hit), but a light of zero area has no pdf.
         if (w.type == ShapeType::Triangle && sampled && parallelOrZero(w.p1 - w.p0, w.p2 - w.p0)) {
             if (sample) sampleValue->fail("a zero-area triangle cannot be sampled");
@@ -187,6 +225,8 @@ PunctualLight readPunctual(const json::Value& v, const Scene& scene) {
              : type == "spot_light" ? PunctualLight::Kind::Spot
                                     : PunctualLight::Kind::Directional;
     l.name = "the light at " + v.pointer();
+    if (auto m = o.optional("motion"))
+        m->fail("a " + type + " cannot move: motion blur moves shapes (spheres, quads, boxes, triangles, glTF files), not punctual lights");
     ObjectTransform xf;
     if (auto t = o.optional("transform")) xf = readTransform(*t);
     const double pi = 3.14159265358979323846;
@@ -262,12 +302,20 @@ void readGltfObject(const json::Value& v, const std::map<std::string, std::uint3
         if (found == index.end()) m->fail("unknown material \"" + matName + "\" (not a key of /materials)");
         include.material = found->second;
     }
+    const std::optional<json::Value> motionValue = o.optional("motion");
+    if (motionValue) include.velocity = readMotion(*motionValue);
     o.finish();
+    const std::size_t firstShape = scene.shapes.size(), firstPunctual = scene.punctualLights.size();
     try {
         includes.append(file, include);
     } catch (const InputError& e) {
         v.fail(e.what());
     }
+    if (!motionValue) return;
+    if (scene.punctualLights.size() != firstPunctual)
+        motionValue->fail("the glTF file has punctual lights (KHR_lights_punctual), which cannot move: motion blur moves shapes only");
+    for (std::size_t i = firstShape; i < scene.shapes.size(); ++i)
+        scene.shapes[i].velocity = checkedVelocity(scene.shapes[i], include.velocity, *motionValue, "glTF file's triangle");
 }
 
 /// Announce every include whose file and material resolve (the others fail when read), so that
@@ -285,6 +333,13 @@ void expectIncludes(const json::Value& v, const std::map<std::string, std::uint3
             const auto found = index.find(m->get<std::string>());
             if (found == index.end()) continue;
             include.material = found->second;
+        }
+        if (j.contains("motion")) {  // as readMotion reads it; a bad one fails when the include is read
+            try {
+                include.velocity = readMotion(item.object().required("motion"));
+            } catch (const InputError&) {
+                continue;
+            }
         }
         includes.expect(includePath(f->get<std::string>(), scene), include);
     }

@@ -15,6 +15,17 @@ float shapeArea(const Shape& s) {
     return 0.0f;
 }
 
+Shape shapeAt(const Shape& s, float t) {
+    Shape out = s;
+    const glm::vec3 shift = t * s.velocity;
+    out.p0 += shift;
+    if (s.type == ShapeType::Triangle) {
+        out.p1 += shift;
+        out.p2 += shift;
+    }
+    return out;
+}
+
 }  // namespace vkp
 
 namespace vkp {

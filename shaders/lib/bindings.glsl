@@ -15,6 +15,7 @@
 #define VKP_HAS_MATERIAL(t) (((MATERIALS >> (t)) & 1u) != 0u)
 #define VKP_SHADING_NORMALS HAS_VERTEX_ATTRIBUTES
 #define VKP_HAS_LAYERS HAS_LAYERS
+#include "shared/intersect.h"  // after the kinds it compiles out
 
 layout(set = 0, binding = VKP_BINDING_FRAME, std140) uniform FrameBlock { GpuFrame frame; };
 /// The scale of the ray offset's absolute floor for this scene (shared/ray_offset.h rayOffsetScale).
@@ -51,12 +52,31 @@ GpuNode fetchNode(uint i) {
     return n;
 }
 
+// ---- Motion blur (HAS_MOTION): every primitive is fetched where it is at the path's time, so the
+// traversal, the shading point, light sampling and light pdfs all see one static scene per path.
+layout(set = 0, binding = VKP_BINDING_MOTION) uniform usamplerBuffer uMotion;  // GpuMotion per primitive
+/// The time of the path in flight, in [0,1) (pathtrace.comp startPath draws it; 0 without motion).
+float gTime = 0.0f;
+
+/// No primitive: a scattering point inside a medium (lib/media.glsl; media do not move).
+const uint VKP_NO_PRIM = 0xffffffffu;
+
+/// How far primitive i has moved at the path's time gTime (world units): gTime x GpuMotion::v;
+/// 0 in variants without motion.
+vec3 motionShift(uint i) {
+    if (!HAS_MOTION) return vec3(0.0f);
+    vec4 v = fetchF(uMotion, int(i * GPU_MOTION_TEXELS));
+    return gTime * vec3(v.x, v.y, v.z);
+}
+
+/// Primitive i where it is at the path's time (shared/intersect.h primMoved under HAS_MOTION).
 GpuPrim fetchPrim(uint i) {
     int base = int(i * GPU_PRIM_TEXELS);
     GpuPrim p;
     p.p0 = fetchF(uPrims, base);
     p.p1 = fetchF(uPrims, base + 1);
     p.p2 = fetchF(uPrims, base + 2);
+    if (HAS_MOTION) p = primMoved(p, motionShift(i));
     return p;
 }
 

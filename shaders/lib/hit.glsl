@@ -13,7 +13,7 @@
 
 struct SurfaceHit {
     uint prim;          ///< index of the primitive hit (an instance's: of its object-space triangle)
-    GpuPrim p;          ///< the primitive in world space (an instance's triangle placed in the world)
+    GpuPrim p;          ///< the primitive in world space at the path's time (an instance's triangle placed in the world)
     vec2 ab;            ///< surface parameters on p (intersect.h)
     vec3 x;             ///< hit point, recomputed from the primitive (shared/ray_offset.h)
     vec3 ng;            ///< unit geometric normal (the primitive's front)
@@ -49,7 +49,7 @@ bool findSurface(vec3 o, vec3 d, out SurfaceHit h, inout uint passes) {
     h.ns = h.frontFace ? h.ng : -h.ng;
     h.m = fetchMaterial(primMaterial(h.p));
     h.nShade = surfaceAt(h.prim, h.p, abAttr, h.ns, d, primMaterial(h.p), h.m, inst, h.nCoat);
-    solidTexturesAt(h.p, h.ab, h.x, true, h.m);  // JSON textures (lib/solid_texture.glsl)
+    solidTexturesAt(h.p, h.prim, h.ab, h.x, true, h.m);  // JSON textures (lib/solid_texture.glsl)
     return true;
 }
 

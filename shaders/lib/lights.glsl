@@ -178,7 +178,7 @@ LightRay sampleEmitter(uint li, vec3 x, vec3 xo, uint prim, GpuPrim p, vec2 u) {
         GpuMaterial lm = fetchMaterial(primMaterial(lp));
         vec3 lx = x + ls.dist * ls.dir;
         emissiveTextureAt(lprim, lp, lx, lm);  // lib/surface.glsl
-        solidEmissionAt(lp, lx, lm);           // lib/solid_texture.glsl
+        solidEmissionAt(lp, lprim, lx, lm);    // lib/solid_texture.glsl
         vec3 nl = primNormal(lp, lx);
         r.le = emitted(lm, ls.dir, nl);
         vec4 sr = shadowRayTo(xo, lx, nl, primOffsetDistance(lp, vec2(1.0f, 1.0f), nl), sceneOffsetScale());  // between offset end points

@@ -12,9 +12,6 @@
 #include "shared/medium.h"
 #include "shared/sample_stream.h"
 
-/// The primitive of a scattering point in a medium: none (no light sample is its own light).
-const uint VKP_NO_PRIM = 0xffffffffu;
-
 /// Number of media in the scene (0 without HAS_MEDIA: every loop below compiles out).
 uint mediumCount() { return HAS_MEDIA ? frame.media.x : 0u; }
 
@@ -78,7 +75,7 @@ Bsdf mediumBsdf(uint i, vec3 x, vec3 dIn) {
     none.p0 = vec4(0.0f, 0.0f, 0.0f, uintBitsToFloat(PRIM_QUAD));
     none.p1 = vec4(0.0f);
     none.p2 = vec4(0.0f);
-    solidTexturesAt(none, vec2(0.0f), x, true, mat);
+    solidTexturesAt(none, VKP_NO_PRIM, vec2(0.0f), x, true, mat);
     return makeBsdf(mat, vec3(0.0f), vec3(0.0f), dIn, true);
 }
 

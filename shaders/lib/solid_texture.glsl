@@ -24,12 +24,15 @@ vec2 solidTextureUv(GpuPrim p, vec2 ab, vec3 x) {
     return ab;
 }
 
-/// Applies the JSON textures of material m at point x of primitive p (surface parameters ab): the
-/// emitted radiance and, if albedo, the albedo (clamped to [0, 1]). Other materials are left alone.
-void solidTexturesAt(GpuPrim p, vec2 ab, vec3 x, bool albedo, inout GpuMaterial m) {
+/// Applies the JSON textures of material m at point x of primitive p (index prim, surface
+/// parameters ab): the emitted radiance and, if albedo, the albedo (clamped to [0, 1]). Other
+/// materials are left alone. A moving primitive's texture moves with it: the 3D textures are
+/// read where the point was at time 0 (x minus the primitive's motion so far, lib/bindings.glsl).
+void solidTexturesAt(GpuPrim p, uint prim, vec2 ab, vec3 x, bool albedo, inout GpuMaterial m) {
     if (!HAS_SOLID_TEXTURES || (floatBitsToUint(m.m0.w) & MATF_SOLID_TEXTURE) == 0u) return;
     gSolidTextureBase = texelFetch(uTexInfo, 0).w;
     vec3 pf = x + solidTextureOrigin();  // the file's coordinates
+    if (HAS_MOTION && prim != VKP_NO_PRIM) pf -= motionShift(prim);
     vec2 uv = solidTextureUv(p, ab, x);
     uint a = floatBitsToUint(m.m2.x);
     uint e = floatBitsToUint(m.m2.y);
@@ -37,11 +40,11 @@ void solidTexturesAt(GpuPrim p, vec2 ab, vec3 x, bool albedo, inout GpuMaterial 
     if (e != 0u) m.m1.xyz = evalSolidTexture(e - 1u, pf, uv);
 }
 
-/// The emission of a JSON-textured emitter m at a point x sampled on light primitive p
-/// (next-event estimation; the albedo is not needed there).
-void solidEmissionAt(GpuPrim p, vec3 x, inout GpuMaterial m) {
+/// The emission of a JSON-textured emitter m at a point x sampled on light primitive p (index
+/// prim; next-event estimation; the albedo is not needed there).
+void solidEmissionAt(GpuPrim p, uint prim, vec3 x, inout GpuMaterial m) {
     if (!HAS_SOLID_TEXTURES || (floatBitsToUint(m.m0.w) & MATF_SOLID_TEXTURE) == 0u) return;
-    solidTexturesAt(p, primAbAt(p, x), x, false, m);
+    solidTexturesAt(p, prim, primAbAt(p, x), x, false, m);
 }
 
 #endif

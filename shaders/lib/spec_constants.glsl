@@ -41,6 +41,10 @@ layout(constant_id = VKP_SPEC_HAS_ABSORPTION) const bool HAS_ABSORPTION = true;
 // Some lambertian, metal or diffuse_light material takes its albedo or emission from a JSON
 // texture (checker, image, Perlin noise: shared/solid_texture.h, lib/solid_texture.glsl).
 layout(constant_id = VKP_SPEC_HAS_SOLID_TEXTURES) const bool HAS_SOLID_TEXTURES = true;
+// Some primitive moves over the shutter interval (motion blur, "Ray Tracing: The Next Week" sec. 2):
+// each path draws a time (shared/sample_stream.h sampleTime) and every primitive is fetched moved
+// to it (lib/bindings.glsl fetchPrim, GpuMotion).
+layout(constant_id = VKP_SPEC_HAS_MOTION) const bool HAS_MOTION = true;
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;

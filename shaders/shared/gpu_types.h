@@ -25,6 +25,18 @@ struct GpuPrim {
 };
 const uint GPU_PRIM_TEXELS = 3u;
 
+// ---- Motion (1 texel per primitive, in the order of the primitives) ---------------------------
+// Motion blur ("Ray Tracing: The Next Week", sec. 2). v.xyz: the primitive's displacement over
+// the shutter interval (world units): at time t in [0,1) the primitive is its GpuPrim moved by
+// t v.xyz (shared/intersect.h primMoved: a sphere's centre, a quad's Q, all three vertices of a
+// triangle), so a sphere's centre goes from `center` at t = 0 towards `center1` at t = 1; v.w: 0.
+// Read only by variants with HAS_MOTION (lib/bindings.glsl fetchPrim); the others upload one token
+// texel. Instances and the triangles of instanced meshes never move (v = 0).
+struct GpuMotion {
+    vec4 v;
+};
+const uint GPU_MOTION_TEXELS = 1u;
+
 // ---- BVH nodes (4 texels, 64 bytes): a binary node stores the boxes of both children ---------
 // FlatBvh::nodes: the build intermediate the 4-wide nodes the kernels traverse are collapsed from
 // (shared/wide_bvh.h); only the layout benchmark's test kernel traverses these

@@ -114,6 +114,25 @@ VKP_FN uint primMaterial(GpuPrim p) { return floatBitsToUint(p.p0.w) >> 2u; }
 /// Light index of a primitive, or -1 when it is not in the light list.
 VKP_FN int primLight(GpuPrim p) { return int(floatBitsToUint(p.p2.w)) - 1; }
 
+/// Primitive p moved by `shift` (world units): a sphere's centre, a quad's Q and all three of a
+/// triangle's vertices; radius, edges and header unchanged (w components are never touched: they
+/// hold bits). Motion blur: shift = time x GpuMotion::v (lib/bindings.glsl fetchPrim).
+VKP_FN GpuPrim primMoved(GpuPrim p, vec3 shift) {
+    GpuPrim q = p;
+    q.p0.x += shift.x;
+    q.p0.y += shift.y;
+    q.p0.z += shift.z;
+    if (primKind(p) == PRIM_TRIANGLE) {
+        q.p1.x += shift.x;
+        q.p1.y += shift.y;
+        q.p1.z += shift.z;
+        q.p2.x += shift.x;
+        q.p2.y += shift.y;
+        q.p2.z += shift.z;
+    }
+    return q;
+}
+
 // A kernel compiled for a scene without some primitive kind defines VKP_HAS_SPHERES or
 // VKP_HAS_PARALLELOGRAMS (quads and triangles) as a boolean expression, usually a specialization
 // constant, before including this header. They are tested in plain `if`s, so a false constant

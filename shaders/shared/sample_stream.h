@@ -17,7 +17,9 @@
 ///     best 2D stratification there is;
 ///   - sampleNext number k (k = 0..3) is coordinate 2 + k / 2 of group 2v + k % 2.
 /// So, per vertex of the kernel:
-///   camera:      jitter = pair 0 (group 0, dims 0-1), lens = pair 1 (group 1, dims 0-1);
+///   camera:      jitter = pair 0 (group 0, dims 0-1), lens = pair 1 (group 1, dims 0-1), and in
+///                variants with motion blur the path's time = single 0 (group 0, dim 2: sampleTime;
+///                jointly stratified with the jitter: dimensions 0-2 of one scrambled Sobol' set);
 ///   lambertian:  strategy = single 0 (group 2v, dim 2), direction = pair 0 (group 2v, dims 0-1),
 ///                light point = pair 1 (group 2v+1, dims 0-1), roulette = single 1 (group 2v+1, dim 2);
 ///   pbr:         strategy = single 0, lobe = single 1, direction = pair 0, light = pair 1, roulette =
@@ -44,6 +46,8 @@ VKP_BEGIN
 const uint VKP_SOBOL_MAX_VERTEX = 8u;
 /// Salt of the decision stream's seed under adaptive sampling (sampleStreamInit).
 const uint VKP_SOBOL_DECISION_SALT = 0x2545f491u;
+/// Salt of the time's hash under `random` (sampleTime).
+const uint VKP_TIME_SALT = 0x68e31da4u;
 
 struct SampleStream {
     uint seed;    ///< per-pixel scramble seed (sobolPixelSeed)
@@ -103,6 +107,20 @@ VKP_FN vec2 sampleNext2(INOUT(SampleStream) s) {
         return sobolSample2(s.seed, s.index, 2u * s.vertex + k);
     }
     return rngNext2(s.rng);
+}
+
+/// The path's time in [0,1) for motion blur ("Ray Tracing: The Next Week", sec. 2: each camera ray
+/// gets a random time, which its scattered and shadow rays keep), drawn at the camera vertex
+/// without changing any other number of the stream, so a variant that draws it sees the same
+/// numbers everywhere else as one that does not:
+///   sobol  - the camera vertex's single 0 (group 0, dim 2), which nothing else draws: jointly
+///            stratified with the jitter (group 0, dims 0-1), and the times of any aligned 2^m
+///            samples of a pixel put one point in each interval [j 2^-m, (j+1) 2^-m);
+///   random - a hash of the stream's RNG state and a salt; the state is not advanced.
+/// Call it at the camera vertex before any other single is drawn there.
+VKP_FN float sampleTime(INOUT(SampleStream) s) {
+    if (VKP_SEQUENCE_SOBOL) return sampleNext(s);
+    return float(pcgHash(pcgHash(s.rng + VKP_TIME_SALT)) >> 8u) * (1.0f / 16777216.0f);
 }
 
 VKP_END

@@ -334,7 +334,7 @@ TEST(GpuRender, NoNonFiniteSamplesOnShippedScenes) {
     for (const char* name : {"cornell-book3.json", "cornell-classic.json", "cornell-lights.json", "cornell-biglight.json", "spheres-book1.json", "env-sky.json",
                              "lamps.json", "next-week/checkered-spheres.json", "next-week/earth.json", "next-week/perlin-spheres.json",
                              "next-week/quads.json", "next-week/simple-light.json", "next-week/cornell-box.json",
-                             "next-week/cornell-smoke.json"}) {
+                             "next-week/cornell-smoke.json", "next-week/bouncing-spheres.json", "next-week/final-scene.json"}) {
         for (Sampler s : kAllSamplers) {
             TestRender r = makeRender(dev, scenesDir() / name, 32, 24, s);
             r.renderer->addSamples(8);
@@ -357,7 +357,7 @@ namespace {
 TEST(GpuRender, SceneVariantMatchesFullVariant) {
     VKP_REQUIRE_DEVICE(dev);
     for (const char* name : {"cornell-book3.json", "spheres-book1.json", "lamps.json", "next-week/simple-light.json",
-                             "next-week/cornell-smoke.json"}) {
+                             "next-week/cornell-smoke.json", "next-week/bouncing-spheres.json"}) {
         Scene scene = loadSceneJson(scenesDir() / name);
         scene.camera.width = 24;
         scene.camera.height = 16;

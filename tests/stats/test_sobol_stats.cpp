@@ -9,8 +9,14 @@
 //   - dimensions (0, 1) of every group are a (0,2)-sequence: those runs put exactly one point in
 //     every elementary interval [a 2^-k, (a+1) 2^-k) x [b 2^-(m-k), (b+1) 2^-(m-k)), k = 0..m;
 //   - values lie in [0,1) (also for the extreme fractions 0 and 2^32 - 1).
+//   - motion blur's time (sampleTime): drawing it changes no other number of the stream under
+//     either sequence; under sobol it is the camera vertex's single 0 (group 0, dim 2), so the
+//     times of every aligned run of 2^m samples of a pixel are stratified (one per interval);
+//     every time lies in [0,1).
 // Statistical properties, each at statsAlpha() (stat_suite.h: family-wise false failure <= 1%
 // over the stats suite's budget of chi-square tests):
+//   - under `random` the time is uniform (64-bin histogram, chi-square two-sided) and uncorrelated
+//     with the pixel jitter and the first number of the next vertex (n r^2 ~ chi-square(1)): 3 tests;
 //   - the other consecutive pairs of the first 32 dimensions (dims 1-2 and 2-3 of a group, dim 3
 //     of group g with dim 0 of group g + 1) have a lower L2-star discrepancy than independent
 //     points: the mean over 64 pixels of T^2 (Warnock's formula) for 256 points is below half of
@@ -32,6 +38,10 @@
 #include <cmath>
 #include <vector>
 
+// The sequence is a specialization constant in the kernel; here a variable, so that one build runs
+// both sequences' code (SampleTime tests; every other test keeps the default, sobol).
+bool gSequenceSobol = true;
+#define VKP_SEQUENCE_SOBOL gSequenceSobol
 #include "shared/sample_stream.h"
 #include "shared/sobol.h"
 #include "stat_suite.h"
@@ -262,6 +272,89 @@ TEST(SampleStream, AdaptiveSplitKeepsImageSamplesAPrefixAndDecisionSamplesApart)
         }
         EXPECT_EQ(s.rng, gpu::rngInit(pixel, i, kSeed));  // `random` sees the sample index unchanged
     }
+}
+
+/// Sets the sequence of the sample streams for one scope (gSequenceSobol above).
+struct SequenceScope {
+    explicit SequenceScope(bool sobol) { gSequenceSobol = sobol; }
+    ~SequenceScope() { gSequenceSobol = true; }
+};
+
+/// The numbers a path draws after the camera (three vertices: singles and pairs in the kernel's order).
+std::vector<float> laterNumbers(gpu::SampleStream s) {
+    std::vector<float> out;
+    for (u32 v = 1; v <= 3; ++v) {
+        gpu::sampleStartVertex(s, v);
+        out.push_back(gpu::sampleNext(s));
+        const glm::vec2 a = gpu::sampleNext2(s), b = gpu::sampleNext2(s);
+        out.insert(out.end(), {a.x, a.y, b.x, b.y, gpu::sampleNext(s), gpu::sampleNext(s), gpu::sampleNext(s)});
+    }
+    return out;
+}
+
+TEST(SampleTime, ChangesNoOtherNumberAndIsTheCameraVertexsFirstSingleUnderSobol) {
+    for (bool sobol : {true, false}) {
+        SequenceScope scope(sobol);
+        float lo = 1.0f, hi = 0.0f;
+        for (u32 pixel = 0; pixel < 64; ++pixel)
+            for (u32 index = 0; index < 64; ++index)
+                for (bool split : {false, true}) {
+                    gpu::SampleStream with = gpu::sampleStreamInit(pixel * 97u, index, kSeed, split);
+                    gpu::SampleStream without = with;
+                    const glm::vec2 jitter = gpu::sampleNext2(with), lens = gpu::sampleNext2(with);
+                    EXPECT_EQ(gpu::sampleNext2(without), jitter);
+                    EXPECT_EQ(gpu::sampleNext2(without), lens);
+                    const gpu::SampleStream before = with;
+                    const float t = gpu::sampleTime(with);
+                    lo = std::min(lo, t);
+                    hi = std::max(hi, t);
+                    if (sobol) EXPECT_EQ(t, gpu::sobolSample(before.seed, before.index, 0, 2));
+                    else EXPECT_EQ(with.rng, before.rng) << "the RNG state must not advance";
+                    ASSERT_EQ(laterNumbers(with), laterNumbers(without)) << (sobol ? "sobol" : "random") << " pixel " << pixel;
+                }
+        EXPECT_GE(lo, 0.0f);
+        EXPECT_LT(hi, 1.0f);
+    }
+}
+
+TEST(SampleTime, SobolTimesOfEveryAlignedRunAreStratified) {
+    int checked = 0;
+    for (u32 pixel : {0u, 1u, 777u, 123456u})
+        for (u32 m = 0; m <= 10; ++m)
+            for (u32 start : {0u, 1u << m, 7u << m}) {
+                const u32 n = 1u << m;
+                std::vector<char> seen(n, 0);
+                for (u32 i = start; i < start + n; ++i) {
+                    gpu::SampleStream s = gpu::sampleStreamInit(pixel, i, kSeed, false);
+                    gpu::sampleNext2(s);
+                    gpu::sampleNext2(s);
+                    const u32 cell = u32(gpu::sampleTime(s) * float(n));
+                    ASSERT_LT(cell, n);
+                    ASSERT_EQ(seen[cell]++, 0) << "pixel " << pixel << " m " << m << " start " << start;
+                }
+                ++checked;
+            }
+    std::printf("%d (pixel, m, run) cases: one time in each interval [j 2^-m, (j+1) 2^-m)\n", checked);
+}
+
+TEST(SampleTime, RandomTimesAreUniformAndIndependentOfTheOtherNumbers) {
+    SequenceScope scope(false);
+    constexpr int kBins = 64;
+    std::vector<double> time, jitter, next, hist(kBins, 0.0);
+    for (u32 k = 0; k < 100000; ++k) {
+        gpu::SampleStream s = gpu::sampleStreamInit((k * 2654435761u) % (kWidth * kWidth), k % 251, kSeed, false);
+        const glm::vec2 j = gpu::sampleNext2(s);
+        gpu::sampleNext2(s);
+        const float t = gpu::sampleTime(s);
+        gpu::sampleStartVertex(s, 1);
+        time.push_back(t);
+        jitter.push_back(j.x);
+        next.push_back(gpu::sampleNext(s));
+        hist[std::size_t(t * kBins)] += 1;
+    }
+    EXPECT_TRUE(passesChi2TwoSided(chi2Test(hist, std::vector<double>(kBins, double(time.size()) / kBins))));
+    EXPECT_TRUE(passesChi2(correlation(time, jitter)));
+    EXPECT_TRUE(passesChi2(correlation(time, next)));
 }
 
 }  // namespace

@@ -58,6 +58,7 @@ SCENES = [
     ("cornell-lights", "scenes/cornell-lights.json", (256, 256), (64, 64)),
     ("spheres-book1", "scenes/spheres-book1.json", (320, 180), (96, 54)),
     ("env-sky", "scenes/env-sky.json", (320, 180), (96, 54)),
+    ("final-scene-book2", "scenes/next-week/final-scene.json", (200, 200), (64, 64)),
     ("dense-mesh", None, (256, 256), (64, 64)),
 ]
 MODES = {
