@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -190,6 +191,8 @@ void Renderer::addSamples(std::uint32_t count) {
 void Renderer::submitSamples(std::uint32_t count) {
     const std::uint32_t perGroup = features_.workgroupX * features_.workgroupY;
     const std::uint32_t groupsX = (width_ + features_.workgroupX - 1) / features_.workgroupX;
+    std::uint32_t dispatches = 0;
+    const auto t0 = std::chrono::steady_clock::now();
     try {
         if (++submissions_ == injectDeviceLostAt_) throw vk::DeviceLostError("vkQueueSubmit (injected by VKPATH_INJECT_DEVICE_LOST)");
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
@@ -217,12 +220,15 @@ void Renderer::submitSamples(std::uint32_t count) {
                 for (std::uint32_t s = 0; s < count; s += spd_) {
                     push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
                     impl_->pipeline->recordDispatch(cmd, dispatchX, dispatchY, &push, sizeof(push), set);
+                    ++dispatches;
                 }
             }
         });
     } catch (const vk::SystemError& e) {
         throw VulkanError(std::string("rendering failed: ") + e.what());
     }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (submissions_ > 1 && dispatches > 0) longestDispatch_ = std::max(longestDispatch_, seconds / dispatches);
     done_ += count;
     taken_ += std::uint64_t(count) * active_;
     dev_->instance().throwIfValidationMessages("while rendering");

@@ -89,6 +89,10 @@ public:
     std::uint32_t samplesPerDispatch() const { return spd_; }
     /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
     std::uint32_t maxPassesLastBatch() const { return maxPasses_; }
+    /// The longest dispatch so far, in seconds, the first submission's (shader JIT) left out: each
+    /// submission's wall time over the dispatches it held (exact with one dispatch per submission;
+    /// the slowest of several may have taken longer). What a GPU's watchdog would see.
+    double longestDispatchSeconds() const { return longestDispatch_; }
     /// Bands of rows the image is rendered in (1 unless it exceeds the device's binding range).
     std::uint32_t bandCount() const;
 
@@ -111,6 +115,7 @@ private:
     std::uint32_t done_ = 0;
     std::uint32_t first_ = 0;
     std::uint32_t maxPasses_ = 0;
+    double longestDispatch_ = 0.0;
     std::uint64_t taken_ = 0;
     std::uint32_t active_ = 0;
     double adaptiveThreshold_ = 0.0;

@@ -100,6 +100,7 @@ RunStats runStats(const RenderJob& job, const std::string& variant, const Sessio
     st.loopGuard = r.counters.loopGuard;
     st.secondsFirstBatch = r.firstBatchSeconds;
     st.secondsRender = r.renderSeconds;
+    st.secondsLongestDispatch = r.longestDispatchSeconds;
     st.secondsToFirstSample = r.firstSampleAt;
     st.secondsCheckpoints = r.checkpointSeconds;
     st.secondsOutput = r.outputSeconds;
@@ -154,6 +155,7 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("seconds_upload", num(s.secondsUpload));
     w.raw("seconds_first_batch", num(s.secondsFirstBatch));
     w.raw("seconds_render", num(s.secondsRender));
+    w.raw("seconds_longest_dispatch", num(s.secondsLongestDispatch));
     w.raw("seconds_to_first_sample", num(s.secondsToFirstSample));
     w.raw("seconds_checkpoints", num(s.secondsCheckpoints));
     w.raw("seconds_output", num(s.secondsOutput));

@@ -151,6 +151,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         const std::uint32_t now = renderer.samplesDone();
         const RenderCounters c = renderer.counters();
         if (batches == 1) res.firstBatchRays = c.rays;
+        res.longestDispatchSeconds = renderer.longestDispatchSeconds();
         const double eta = double(o.spp - now) * perSample;
         progress.update(now - first, res.renderSeconds, double(renderer.samplesTaken()), double(c.rays), eta,
                         now == o.spp || renderer.activePixels() == 0);

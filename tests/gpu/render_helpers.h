@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -94,6 +95,31 @@ inline void pooledMean(const PixelSums& s, int c, double& mean, double& stderrOf
     mean = sum / n;
     const double var = std::max(0.0, (sq / n - mean * mean) * n / (n - 1));
     stderrOfMean = std::sqrt(var / n);
+}
+
+/// Renders `scene` under every sampler, `bsdf` with bsdfSpp samples and the others with
+/// otherSpp, and expects the pooled means of `light`, `mixture` and `mis` to agree with `bsdf`'s
+/// in every channel: |z| <= maxZ, z from the sums' standard errors (9 z-tests). Fails at once if
+/// `bsdf`'s mean of a channel is not above minMean (a black image agrees with anything).
+/// The test that calls it states the false-failure probability of maxZ.
+inline void expectSamplersAgreeWithBsdf(VulkanDevice& dev, const Scene& scene, std::uint32_t bsdfSpp,
+                                        std::uint32_t otherSpp, const std::string& what, double maxZ, double minMean) {
+    double mean[4][3], se[4][3];
+    for (std::size_t k = 0; k < 4; ++k) {
+        const Sampler sampler = kAllSamplers[k];
+        const PixelSums s = renderSums(dev, scene, sampler, sampler == Sampler::Bsdf ? bsdfSpp : otherSpp, what);
+        for (int c = 0; c < 3; ++c) pooledMean(s, c, mean[k][c], se[k][c]);
+    }
+    static_assert(kAllSamplers[0] == Sampler::Bsdf, "bsdf first");
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(mean[0][c], minMean) << what << ": channel " << c << " is lit";
+        for (std::size_t j = 1; j < 4; ++j) {
+            const double z = (mean[j][c] - mean[0][c]) / std::hypot(se[j][c], se[0][c]);
+            std::printf("  %s, channel %d: %-7s %.5f vs bsdf %.5f (z %.2f)\n", what.c_str(), c, samplerName(kAllSamplers[j]),
+                        mean[j][c], mean[0][c], z);
+            EXPECT_LE(std::abs(z), maxZ) << what << ": " << samplerName(kAllSamplers[j]) << " channel " << c;
+        }
+    }
 }
 
 /// Where the camera ray through image point (px, py) of `f` meets the plane z = zPlane; pixel

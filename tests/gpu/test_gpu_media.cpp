@@ -161,21 +161,7 @@ TEST(GpuMedia, NextEventEstimationInMediaAgreesWithPhaseSampling) {
                   {"type": "constant_medium", "density": 1.5, "albedo": [0.9, 0.9, 0.9],
                    "boundary": {"type": "sphere", "center": [-0.5, 1, 1], "radius": 0.6}}]})",
                                        "lit-medium.json");
-    double mean[4][3], se[4][3];
-    int k = 0;
-    for (Sampler sampler : kAllSamplers) {
-        const PixelSums s = renderSums(dev, scene, sampler, sampler == Sampler::Bsdf ? 2048 : 512, "lit medium");
-        for (int c = 0; c < 3; ++c) pooledMean(s, c, mean[k][c], se[k][c]);
-        ++k;
-    }
-    for (int c = 0; c < 3; ++c) {
-        ASSERT_GT(mean[0][c], 1e-2) << "the room is lit";
-        for (int j = 1; j < 4; ++j) {
-            const double z = (mean[j][c] - mean[0][c]) / std::hypot(se[j][c], se[0][c]);
-            std::printf("  channel %d: %-7s %.5f vs bsdf %.5f (z %.2f)\n", c, samplerName(kAllSamplers[j]), mean[j][c], mean[0][c], z);
-            EXPECT_LE(std::abs(z), kMaxZ) << samplerName(kAllSamplers[j]) << " channel " << c;
-        }
-    }
+    expectSamplersAgreeWithBsdf(dev, scene, 2048, 512, "lit medium", kMaxZ, 1e-2);
 }
 
 // Shadow rays of punctual lights cross media too (under every sampler: `bsdf` and `mixture` sample

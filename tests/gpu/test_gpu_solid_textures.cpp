@@ -261,21 +261,7 @@ TEST(GpuSolidTextures, NextEventEstimationReadsTheEmissionWhereItSamples) {
       "objects": [{"type": "quad", "Q": [-3, 0, 3], "u": [6, 0, 0], "v": [0, 0, -6], "material": "floor"},
                   {"type": "quad", "Q": [-1.5, 2.5, -1], "u": [2.2, 0, 0], "v": [0, -0.3, 1.6], "material": "panel"},
                   {"type": "sphere", "center": [1.6, 0.6, 0.4], "radius": 0.35, "material": "ball"}]})");
-    double mean[4][3], se[4][3];
-    int k = 0;
-    for (Sampler sampler : kAllSamplers) {
-        const PixelSums s = renderSums(dev, scene, sampler, sampler == Sampler::Bsdf ? 2048 : 512, "textured lights");
-        for (int c = 0; c < 3; ++c) pooledMean(s, c, mean[k][c], se[k][c]);
-        ++k;
-    }
-    for (int c = 0; c < 3; ++c) {
-        ASSERT_GT(mean[0][c], 1e-2) << "the floor is lit";
-        for (int j = 1; j < 4; ++j) {
-            const double z = (mean[j][c] - mean[0][c]) / std::hypot(se[j][c], se[0][c]);
-            std::printf("  channel %d: %-7s %.5f vs bsdf %.5f (z %.2f)\n", c, samplerName(kAllSamplers[j]), mean[j][c], mean[0][c], z);
-            EXPECT_LE(std::abs(z), 4.5) << samplerName(kAllSamplers[j]) << " channel " << c;
-        }
-    }
+    expectSamplersAgreeWithBsdf(dev, scene, 2048, 512, "textured lights", 4.5, 1e-2);
 }
 
 }  // namespace

@@ -5,9 +5,21 @@
 
 namespace vkp::test {
 
-std::filesystem::path sourceDir() { return VKPATH_SOURCE_DIR; }
-std::filesystem::path scenesDir() { return VKPATH_SCENES_DIR; }
-std::filesystem::path vkpathBinary() { return VKPATH_BINARY; }
+namespace {
+/// $name when set and not empty (a build copied to another machine, tools/gpu-check.sh), else
+/// the path CMake compiled in.
+std::filesystem::path fromEnv(const char* name, const char* compiledIn) {
+    const char* v = std::getenv(name);
+    return (v && *v) ? std::filesystem::path(v) : std::filesystem::path(compiledIn);
+}
+}  // namespace
+
+std::filesystem::path sourceDir() { return fromEnv("VKPATH_SOURCE_DIR", VKPATH_SOURCE_DIR); }
+std::filesystem::path scenesDir() {
+    const char* v = std::getenv("VKPATH_SOURCE_DIR");
+    return (v && *v) ? std::filesystem::path(v) / "scenes" : std::filesystem::path(VKPATH_SCENES_DIR);
+}
+std::filesystem::path vkpathBinary() { return fromEnv("VKPATH_BINARY", VKPATH_BINARY); }
 
 std::filesystem::path scratchDir(const std::string& testName) {
     const char* base = std::getenv("VKPATH_TEST_TMP");

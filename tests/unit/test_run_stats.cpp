@@ -29,6 +29,7 @@ RunStats example() {
     s.secondsTotal = 3.0;
     s.secondsRender = 2.0;
     s.secondsFirstBatch = 0.5;
+    s.secondsLongestDispatch = 0.125;
     s.deviceName = "llvmpipe\t(LLVM)";
     return s;
 }
@@ -52,6 +53,7 @@ TEST(RunStats, RequiredKeysAndDerivedNumbers) {
     EXPECT_TRUE(j["error"].is_null());
     EXPECT_EQ(j["peak_rss_bytes"], 123456789);
     EXPECT_EQ(j["scene_buffer_bytes"], 4096);
+    EXPECT_EQ(j["seconds_longest_dispatch"], 0.125);
 }
 
 TEST(RunStats, NoRenderTimeGivesNullRatesAndErrorIsAnObject) {

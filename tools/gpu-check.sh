@@ -1,0 +1,147 @@
+#!/usr/bin/env bash
+# The check to run on a machine with a real GPU (issue 18): the GPU tests of a build made on
+# another machine and copied over, then a short benchmark of every scene of the benchmark suite,
+# summed up in one JSON file. Needs nothing but bash, coreutils and the Vulkan loader with a
+# driver: no compiler, no CMake, no network, no package archive (the machine may have none).
+#
+#   tools/gpu-check.sh [--build DIR] [--out DIR] [--seconds S] [--size N] [--tests REGEX]
+#                      [--no-tests] [--no-bench] [--device SEL]
+#
+#   --build DIR    the build tree (default build/release): DIR/vkpath and DIR/tests/gpu/test_*
+#   --out DIR      where the logs, renders and summary.json go (default gpu-check-out)
+#   --seconds S    render time per suite scene (default 20), after a 1-spp warm-up render that
+#                  fills the shader cache; --size N renders N x N (default 256)
+#   --tests REGEX  only the test binaries whose name matches (default: every tests/gpu binary)
+#   --device SEL   passed to vkpath (index or name substring; default: the most capable device)
+#
+# Copy the repository with its build tree (tools/, scenes/, build/release/) to the machine, keeping
+# their places relative to each other, and run this from the copy's root. The tests find the
+# scenes and the vkpath binary through VKPATH_SOURCE_DIR and VKPATH_BINARY (tests/support/
+# test_paths.h), which this script sets, so the copy may live anywhere. CI=true is set: a missing
+# device or a skipped GPU test is a failure, as in CI. Every test binary and every render runs under
+# a time limit, so a hung driver cannot hold the machine.
+#
+# summary.json: {"device": ..., "tests": {"binaries", "passed", "failed", "failures": [...],
+# "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
+# "rays_per_second_steady", "seconds_to_first_sample", "seconds_longest_dispatch",
+# "samples_per_dispatch", "nonfinite_samples"}, ...], "seconds": total}. The
+# exit status is 0 only when every test binary passed and every render succeeded.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$root/build/release
+out=gpu-check-out
+seconds=20
+size=256
+tests_re=.
+run_tests=1
+run_bench=1
+device=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --build) build=$(cd "$2" && pwd); shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --seconds) seconds=$2; shift 2 ;;
+    --size) size=$2; shift 2 ;;
+    --tests) tests_re=$2; shift 2 ;;
+    --no-tests) run_tests=0; shift ;;
+    --no-bench) run_bench=0; shift ;;
+    --device) device=(--device "$2"); shift 2 ;;
+    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+    *) echo "gpu-check: unknown option $1 (--help)" >&2; exit 2 ;;
+  esac
+done
+vkpath=$build/vkpath
+[ -x "$vkpath" ] || { echo "gpu-check: no vkpath binary at $vkpath (--build DIR)" >&2; exit 2; }
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+export CI=true VKPATH_SOURCE_DIR="$root" VKPATH_BINARY="$vkpath" VKPATH_TEST_TMP="$out/scratch"
+start=$(date +%s)
+device_json=""
+status=0
+
+json_str() {  # a JSON string of $1
+  local s=${1//\\/\\\\}
+  s=${s//\"/\\\"}
+  s=${s//$'\n'/ }
+  printf '"%s"' "${s//$'\t'/ }"
+}
+json_field() {  # the raw value of key $2 in vkpath's --stats-json file $1 (one key per line), or null
+  local v
+  v=$(sed -n "s/^ *\"$2\": \(.*[^,]\),\{0,1\}\$/\1/p" "$1" | head -1)
+  printf '%s' "${v:-null}"
+}
+
+# ---- The device, as vkpath sees it.
+"$vkpath" devices >"$out/devices.txt" 2>&1 || status=1
+echo "gpu-check: devices:"
+sed 's/^/  /' "$out/devices.txt"
+
+# ---- The GPU tests: every gtest binary of tests/gpu, one after the other.
+tests_json='{"skipped": true}'
+if [ "$run_tests" = 1 ]; then
+  t0=$(date +%s)
+  passed=0 failed=0 failures=() binaries=0
+  for bin in "$build"/tests/gpu/test_*; do
+    [ -x "$bin" ] && [ -f "$bin" ] || continue
+    name=$(basename "$bin")
+    [[ $name =~ $tests_re ]] || continue
+    binaries=$((binaries + 1))
+    echo "gpu-check: $name"
+    if timeout 900 "$bin" --gtest_brief=1 >"$out/$name.log" 2>&1; then
+      passed=$((passed + 1))
+    else
+      failed=$((failed + 1))
+      failures+=("$name: $(grep -m1 -E 'FAILED|Failure|error' "$out/$name.log" | cut -c1-200)")
+      status=1
+      echo "gpu-check:   FAILED (log: $out/$name.log)"
+    fi
+  done
+  list=""
+  for f in "${failures[@]+"${failures[@]}"}"; do list+="${list:+, }$(json_str "$f")"; done
+  tests_json="{\"binaries\": $binaries, \"passed\": $passed, \"failed\": $failed, \"failures\": [$list], \"seconds\": $(($(date +%s) - t0))}"
+fi
+
+# ---- The suite's scenes (tools/bench/bench.py SCENES; the generated dense mesh needs Python and
+# is left to tools/bench.sh): a warm-up render, then a timed one.
+bench_json=""
+if [ "$run_bench" = 1 ]; then
+  for scene in scenes/cornell-book3.json scenes/cornell-classic.json scenes/cornell-lights.json \
+               scenes/spheres-book1.json scenes/env-sky.json scenes/next-week/final-scene.json; do
+    name=$(basename "$scene" .json)
+    echo "gpu-check: $scene, ${size}x$size, $seconds s"
+    common=(--width "$size" --height "$size" "${device[@]+"${device[@]}"}" --quiet)
+    timeout 600 "$vkpath" render "$root/$scene" "${common[@]}" --spp 1 -o "$out/$name-warmup.pfm" >/dev/null 2>&1
+    if timeout $((seconds * 3 + 300)) "$vkpath" render "$root/$scene" "${common[@]}" --spp 16777216 --time "$seconds" \
+         --stats-json "$out/$name.json" -o "$out/$name.exr" >"$out/$name.log" 2>&1; then
+      s=$out/$name.json
+      entry="{\"scene\": $(json_str "$scene"), \"size\": \"${size}x$size\", \"seconds\": $seconds"
+      for k in spp rays_per_second rays_per_second_steady seconds_to_first_sample seconds_longest_dispatch \
+               samples_per_dispatch nonfinite_samples loop_guard_paths; do
+        entry+=", \"$k\": $(json_field "$s" "$k")"
+      done
+      entry+="}"
+      [ "$(json_field "$s" nonfinite_samples)" = 0 ] && [ "$(json_field "$s" loop_guard_paths)" = 0 ] || status=1
+      [ -z "$device_json" ] && device_json=$(sed -n '/"device": {/,/}/p' "$s" | tr -d '\n' | sed 's/^ *"device": //; s/,$//')
+    else
+      status=1
+      entry="{\"scene\": $(json_str "$scene"), \"error\": $(json_str "$(tail -c 300 "$out/$name.log")")}"
+      echo "gpu-check:   FAILED (log: $out/$name.log)"
+    fi
+    bench_json+="${bench_json:+,
+    }$entry"
+  done
+fi
+
+{
+  echo "{"
+  echo "  \"device\": ${device_json:-$(json_str "$(head -3 "$out/devices.txt")")},"
+  echo "  \"tests\": $tests_json,"
+  echo "  \"bench\": ["
+  [ -n "$bench_json" ] && echo "    $bench_json"
+  echo "  ],"
+  echo "  \"seconds\": $(($(date +%s) - start)),"
+  echo "  \"ok\": $([ "$status" = 0 ] && echo true || echo false)"
+  echo "}"
+} >"$out/summary.json"
+echo "gpu-check: wrote $out/summary.json in $(($(date +%s) - start)) s: $([ "$status" = 0 ] && echo ok || echo FAILED)"
+exit "$status"
