@@ -152,12 +152,12 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         // the phase function's sample), or passes every medium (weight 1 too: it does so with the
         // probability their transmittance is).
         float t = found ? distance(s.o, h.x) : VKP_FAR;
-        uint medium;
-        if (sampleMediumEvent(s.o, s.d, t, s.smp, t, medium, passes)) {
+        uint material;
+        if (sampleMediumEvent(s.o, s.d, t, s.smp, t, material, passes)) {
             if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * t);
             if (lastVertex(s)) return true;
             vec3 x = s.o + t * s.d;  // no surface to leave: no offset
-            return scatter(s, mediumBsdf(medium, x, s.d), x, x, VKP_NO_PRIM, h, rays, passes);
+            return scatter(s, mediumBsdf(material, x, s.d), x, x, VKP_NO_PRIM, h, rays, passes);
         }
     }
     if (!found) {

@@ -33,13 +33,7 @@ void readBoundary(const json::Value& v, const Scene& scene, Medium& m) {
         half = glm::dvec3(o.number("radius", json::Range::above(0.0)));
     } else {
         m.boundary = Medium::Boundary::Box;
-        const glm::dvec3 lo = o.dvec3("min");
-        const json::Value maxValue = o.required("max");
-        const glm::dvec3 hi = maxValue.dvec3();
-        for (std::size_t i = 0; i < 3; ++i) {
-            const int k = static_cast<int>(i);
-            if (!(hi[k] > lo[k])) maxValue.element(i).fail("must be > min[" + std::to_string(i) + "]");
-        }
+        const auto [lo, hi] = readBoxCorners(o);
         centre = 0.5 * (lo + hi);
         half = 0.5 * (hi - lo);
     }

@@ -43,6 +43,25 @@ std::vector<LocalShape> boxFaces(glm::dvec3 a, glm::dvec3 b) {
     };
 }
 
+}  // namespace
+
+std::pair<glm::dvec3, glm::dvec3> readBoxCorners(json::Object& o) {
+    const glm::dvec3 lo = o.dvec3("min");
+    const json::Value maxValue = o.required("max");
+    const glm::dvec3 hi = maxValue.dvec3();
+    for (std::size_t i = 0; i < 3; ++i) {
+        const int k = static_cast<int>(i);
+        if (!(hi[k] > lo[k])) {
+            maxValue.element(i).fail("must be > min[" + std::to_string(i) + "] (got " +
+                                     json::describeValue(maxValue.json()[i]) + " <= " +
+                                     json::describeValue(o.required("min").json()[i]) + ")");
+        }
+    }
+    return {lo, hi};
+}
+
+namespace {
+
 /// Apply the object's transform to one shape (spheres: centre moves, radius scales) in double,
 /// then express its points relative to origin (the camera) and round to float: the only place
 /// where a JSON object's coordinates become float (docs/design.md "Camera-relative space").
@@ -145,17 +164,7 @@ std::vector<Shape> readObject(const json::Value& v, const std::map<std::string, 
         if (parallelOrZero(s.p1, s.p2)) o.required("v").fail("must not be zero or parallel to u (u x v = 0)");
         local.push_back(s);
     } else if (type == "box") {
-        const glm::dvec3 lo = o.dvec3("min");
-        const json::Value maxValue = o.required("max");
-        const glm::dvec3 hi = maxValue.dvec3();
-        for (std::size_t i = 0; i < 3; ++i) {
-            const int k = static_cast<int>(i);
-            if (!(hi[k] > lo[k])) {
-                maxValue.element(i).fail("must be > min[" + std::to_string(i) + "] (got " +
-                                         json::describeValue(maxValue.json()[i]) + " <= " +
-                                         json::describeValue(o.required("min").json()[i]) + ")");
-            }
-        }
+        const auto [lo, hi] = readBoxCorners(o);
         local = boxFaces(lo, hi);
     } else {
         LocalShape s;

@@ -57,6 +57,9 @@ private:
     std::vector<std::uint32_t> depth_;  // per solid texture: checkers on its longest way to a colour
 };
 
+/// A box's "min" and "max" corners of object o, each max above its min (else the one-line error
+/// at the offending max element): the "box" object's and a medium's box boundary's.
+std::pair<glm::dvec3, glm::dvec3> readBoxCorners(json::Object& o);
 /// {"type": "constant_medium", "boundary": sphere or box, "density": d, "albedo": colour or
 /// texture} of "objects" (scenes/README.md "Media"): the medium, whose isotropic material it
 /// appends to Scene::materials. At most gpu::MAX_MEDIA per scene.

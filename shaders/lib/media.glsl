@@ -33,9 +33,9 @@ GpuMedium fetchMedium(uint i) {
 /// ray passes every medium (probability: the segment's transmittance). Overlapping media thus
 /// act as one of the summed density, the event belonging to each with probability density_i /
 /// sum: exactly the book's independent media.
-bool sampleMediumEvent(vec3 o, vec3 d, float tMax, inout SampleStream smp, out float t, out uint medium, inout uint passes) {
+bool sampleMediumEvent(vec3 o, vec3 d, float tMax, inout SampleStream smp, out float t, out uint material, inout uint passes) {
     t = tMax;
-    medium = 0u;
+    material = 0u;
     bool scattered = false;
     uint count = mediumCount();
     for (uint i = 0u; i < count; ++i) {
@@ -45,7 +45,7 @@ bool sampleMediumEvent(vec3 o, vec3 d, float tMax, inout SampleStream smp, out f
         float ti = t0 + sampleFreeFlight(m.params.x, sampleNext(smp));
         if (ti < t1) {
             t = ti;
-            medium = i;
+            material = floatBitsToUint(m.params.z);
             scattered = true;
         }
     }
@@ -67,10 +67,11 @@ float mediaTransmittance(vec3 o, vec3 d, float tMax, inout uint passes) {
     return exp(-depth);
 }
 
-/// The phase function of medium i at point x as a BSDF (MAT_ISOTROPIC; normal 0: no surface),
-/// its albedo from its material (a JSON texture evaluated at x; an image texture reads UV (0, 0)).
-Bsdf mediumBsdf(uint i, vec3 x, vec3 dIn) {
-    GpuMaterial mat = fetchMaterial(floatBitsToUint(fetchMedium(i).params.z));
+/// The phase function of a medium of MAT_ISOTROPIC material `material` at point x as a BSDF
+/// (normal 0: no surface), its albedo a JSON texture evaluated at x where it has one (an image
+/// texture reads UV (0, 0)).
+Bsdf mediumBsdf(uint material, vec3 x, vec3 dIn) {
+    GpuMaterial mat = fetchMaterial(material);
     GpuPrim none;  // no primitive: solidTextureUv of a non-sphere gives ab = (0, 0)
     none.p0 = vec4(0.0f, 0.0f, 0.0f, uintBitsToFloat(PRIM_QUAD));
     none.p1 = vec4(0.0f);
