@@ -33,6 +33,7 @@
 #include "lib/direct_light.glsl"
 #include "lib/mixture.glsl"
 #include "lib/media.glsl"
+#include "shared/aov.h"
 
 // One path in flight. A path is advanced one bounce per pass of the main loop; when it ends, its
 // radiance is added to the pixel and the pixel's next sample starts in the same loop ("path
@@ -54,6 +55,12 @@ struct PathState {
     vec3 sigma;          // HAS_ABSORPTION: absorption coefficient of the dielectric the ray travels
                          // inside (1/world unit; 0 outside): set when a ray refracts in, cleared
                          // when it refracts out (closed, non-nested glass)
+    // HAS_AOV (shared/aov.h): the feature values of this sample.
+    vec3 aovTint;        // product of the sampled weights of the mirrors and glass passed so far
+    vec3 aovAlbedo;      // albedo at the first non-specular vertex (times aovTint), 0 until then
+    vec3 aovNormal;      // shading normal there, 0 until then
+    bool aovDone;        // the albedo and normal are set
+    vec4 aovPos;         // xyz: the camera ray's hit point (camera-relative), w: 1 if it hit, else all 0
 };
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
@@ -86,7 +93,29 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     s.prevN = vec3(0.0f, 0.0f, 1.0f);
     s.prevBsdfPdf = 0.0f;
     s.sigma = vec3(0.0f);
+    s.aovTint = vec3(1.0f);
+    s.aovAlbedo = vec3(0.0f);
+    s.aovNormal = vec3(0.0f);
+    s.aovDone = false;
+    s.aovPos = vec4(0.0f);
     return s;
+}
+
+/// HAS_AOV: the path reaches a vertex with BSDF b. Unless the AOVs see through it (a mirror or
+/// glass: the next vertex decides), its albedo and normal are the sample's (shared/aov.h).
+void aovVertex(inout PathState s, Bsdf b) {
+    if (aovSeesThrough(b)) return;
+    s.aovAlbedo = s.aovTint * aovAlbedo(b);
+    s.aovNormal = aovNormal(b);
+    s.aovDone = true;
+}
+
+/// HAS_AOV: the path ends, before any non-specular vertex, at radiance L (the background, a light)
+/// seen through the surface normal n (0 for none).
+void aovEnd(inout PathState s, vec3 L, vec3 n) {
+    s.aovAlbedo = s.aovTint * clamp(L, vec3(0.0f), vec3(1.0f));
+    s.aovNormal = n;
+    s.aovDone = true;
 }
 
 /// A new vertex of the path, before it scatters: what its ray found has been counted. Returns true
@@ -114,6 +143,7 @@ bool scatter(inout PathState s, Bsdf b, vec3 x, vec3 xo, uint prim, SurfaceHit h
         vec3 weight;
         if (!sampleBsdf(b, uBsdf, dir, pdf, weight)) return true;
         s.throughput *= weight;
+        if (HAS_AOV && !s.aovDone) s.aovTint *= weight;  // a mirror or glass the AOVs see through
         if (nee) {
             // `light` ignores the light this sample finds (already counted), `mis` weights it.
             s.countEmission = neeWeighted(b);
@@ -146,6 +176,7 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     sampleStartVertex(s.smp, s.depth);  // the numbers of the vertex this ray finds
     SurfaceHit h;
     bool found = findSurface(s.o, s.d, h, passes);
+    if (HAS_AOV && s.depth == 1u && found) s.aovPos = vec4(h.x, 1.0f);
     if (HAS_MEDIA) {
         // The ray scatters at distance t inside a medium before the surface (weight 1: the
         // transmittance times the density over the free-flight density; the albedo comes with
@@ -155,12 +186,14 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
         uint material;
         if (sampleMediumEvent(s.o, s.d, t, s.smp, t, material, passes)) {
             if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * t);
+            if (HAS_AOV && !s.aovDone) aovVertex(s, mediumBsdf(material, s.o + t * s.d, s.d));
             if (lastVertex(s)) return true;
             vec3 x = s.o + t * s.d;  // no surface to leave: no offset
             return scatter(s, mediumBsdf(material, x, s.d), x, x, VKP_NO_PRIM, h, rays, passes);
         }
     }
     if (!found) {
+        if (HAS_AOV && !s.aovDone) aovEnd(s, envRadiance(s.d), vec3(0.0f));
         // Inside absorbing glass an escaping ray travels forever: nothing is left of it.
         if (!(HAS_ABSORPTION && any(greaterThan(s.sigma, vec3(0.0f)))))
             s.radiance += s.throughput * envEscaped(s.d, s.prevN, s.prevBsdfPdf, s.countEmission);
@@ -173,7 +206,11 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     // the previous vertex.
     if (HAS_EMITTERS && s.countEmission)
         s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
-    if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) return true;  // lights do not scatter
+    if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) {  // lights do not scatter
+        if (HAS_AOV && !s.aovDone) aovEnd(s, emitted(h.m, s.d, h.ng), h.ns);
+        return true;
+    }
+    if (HAS_AOV && !s.aovDone) aovVertex(s, makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace));
     if (lastVertex(s)) return true;
     return scatter(s, makeBsdf(h.m, h.ns, h.nShade, h.nCoat, s.d, h.frontFace), h.x, spawnFrom(h, h.ns), h.prim, h, rays,
                    passes);
@@ -208,6 +245,13 @@ void main() {
         pix = uvec2(pixel % width, pixel / width);
     }
     uint at = 2u * (pixel - base);  // the pixel's pair of vec4 in the band's buffers
+    uint aovAt = AOV_VEC4_PER_PIXEL * (pixel - base);
+    vec4 aov0 = vec4(0.0f), aov1 = vec4(0.0f), aov2 = vec4(0.0f);
+    if (HAS_AOV) {
+        aov0 = aovSums[aovAt];
+        aov1 = aovSums[aovAt + 1u];
+        aov2 = aovSums[aovAt + 2u];
+    }
 
     vec4 sum = accumSum[at];
     vec4 sumLo = accumSum[at + 1u];
@@ -246,6 +290,16 @@ void main() {
                 addCompensated(sum, sumLo, vec4(L, 1.0f));
                 addCompensated(sq, sqLo, vec4(L * L, 0.0f));
             }
+            if (HAS_AOV) {  // every sample, the dropped ones and adaptive sampling's decision stream too
+                // Running means (shared/aov.h): over the samples, and the position over the hits.
+                aov0.w += 1.0f;
+                aov0.xyz += (s.aovAlbedo - aov0.xyz) / aov0.w;
+                aov1.xyz += (s.aovNormal - aov1.xyz) / aov0.w;
+                if (s.aovPos.w > 0.0f) {
+                    aov1.w += 1.0f;
+                    aov2.xyz += (s.aovPos.xyz - aov2.xyz) / aov1.w;
+                }
+            }
             k++;
             s = startPath(pix, pixel, push.batch.x + min(k, push.batch.y - 1u));
         }
@@ -254,6 +308,11 @@ void main() {
     accumSum[at + 1u] = sumLo;
     accumSq[at] = sq;
     accumSq[at + 1u] = sqLo;
+    if (HAS_AOV) {
+        aovSums[aovAt] = aov0;
+        aovSums[aovAt + 1u] = aov1;
+        aovSums[aovAt + 2u] = aov2;
+    }
     if (adaptive) {
         decisionSums[at] = dSum;
         decisionSums[at + 1u] = dSq;

@@ -12,6 +12,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
   libdraco-dev libmeshoptimizer-dev
+  openimageio-tools  # oiiotool: the GPU tests read vkpath's EXR layers with the OpenEXR library too
 )
 for option in "$@"; do
   case "$option" in

@@ -95,6 +95,13 @@ render options:
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
   --dump-format F         also dump exr or pfm (repeatable)
+  --aov LIST              feature images: any of albedo,normal,depth,position,variance,spp (or all),
+                          as layers of EXR outputs (albedo.R, normal.X, ...; also in EXR dumps), else
+                          as files OUT.<aov>.<ext> (.pfm beside a PNG); docs/design.md "Feature images"
+  --denoise               also write a denoised image (biased; the raw image is kept): OUT.denoised.<ext>
+                          beside every output, or --denoise-output FILE
+  --denoise-output FILE   where the denoised image goes (with --denoise)
+  --denoise-dumps         denoise every dump too: frame-<spp>.denoised.<ext> (with --denoise)
   --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
   --adaptive T            adaptive sampling: a pixel stops once its estimated relative standard error
                           (that of relMSE's (x-y)^2/(y^2+0.01)) is <= T, e.g. 0.02; unbiased: a quarter
@@ -222,7 +229,12 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 else if (v == "pfm") a.session.dumpFormats.push_back(ImageFormat::Pfm);
                 else if (v == "hdr") a.session.dumpFormats.push_back(ImageFormat::Hdr);
                 else if (v != "png") usage("--dump-format must be exr, pfm, hdr or png, got '" + v + "'");
-            } else if (f == "--samples-per-dispatch") a.render.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            } else if (f == "--aov") {
+                if (const std::string e = parseAovList(value(f), a.session.aovs); !e.empty()) usage("--aov: " + e);
+            } else if (f == "--denoise") a.denoise = true;
+            else if (f == "--denoise-output") a.session.denoiseOutput = fileValue(f);
+            else if (f == "--denoise-dumps") a.session.denoiseDumps = true;
+            else if (f == "--samples-per-dispatch") a.render.samplesPerDispatch = parseUint(f, value(f), 1, 64);
             else if (f == "--adaptive") a.render.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
             else if (f == "--adaptive-min-spp") a.render.adaptiveMinSpp = parseUint(f, value(f), 8, 1u << 24);
             else if (f == "--reference") a.reference = fileValue(f);
@@ -276,6 +288,12 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         usage("--sample-range does not work with --adaptive: adaptive decisions need every earlier sample of a pixel");
     if (solidAngleMinGiven && a.render.lightSampling != LightSampling::Auto)
         usage("--solid-angle-min applies to --light-sampling auto only");
+    if (!a.denoise && (!a.session.denoiseOutput.empty() || a.session.denoiseDumps))
+        usage("--denoise-output and --denoise-dumps need --denoise");
+    if (a.session.denoiseDumps && !a.session.dumpEvery) usage("--denoise-dumps needs --dump-every N");
+    // The kernel gathers the feature images the AOVs or the denoiser need.
+    for (Aov x : a.session.aovs) a.render.aov = a.render.aov || aovNeedsKernel(x);
+    a.render.aov = a.render.aov || a.denoise;
     return a;
 }
 

@@ -49,6 +49,8 @@ struct CliArgs {
     std::optional<std::pair<std::uint32_t, std::uint32_t>> sampleRange;
     /// `vkpath merge PART...`: the partial files to add up (outputs: session.outputs, .partial).
     std::vector<std::filesystem::path> parts;
+    /// `--denoise`: write a denoised image beside the raw one (render/denoiser.h).
+    bool denoise = false;
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

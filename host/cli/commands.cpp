@@ -157,6 +157,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     const double secondsSceneLoad = since(t);
     // Fail before the render and leave no file: outputs, the reference, the logs, the state files.
     for (const auto& o : job.session.outputs) checkOutputPath(o);
+    if (!job.session.denoiseOutput.empty()) checkOutputPath(job.session.denoiseOutput);
     if (!job.session.checkpoint.empty()) checkCanCreateFile(job.session.checkpoint);
     if (!job.session.partial.empty()) checkCanCreateFile(job.session.partial);
     if (job.session.dumpEvery) checkDumpDir(job.session.dumpDir);
@@ -172,6 +173,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     const GpuArrays arrays = packGpuArrays(job.scene, bvh, job.options);
     const double secondsBvh = since(t);
     job.session.key = renderKey(arrays, job.options);
+    job.session.aovFrame = arrays.aovFrame;
     const std::uint32_t firstSample = a.sampleRange ? a.sampleRange->first : 0;
     if (resume) {
         const std::string what = a.resume.string() + ": cannot resume";
@@ -204,13 +206,17 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
                      renderer.features().name().c_str());
 
     std::unique_ptr<ErrorLog> log;
-    ErrorMetrics lastError;
+    ErrorMetrics lastError, lastDenoisedError;
     if (reference) {
-        if (!a.errorLog.empty()) log = std::make_unique<ErrorLog>(a.errorLog);
+        const bool denoisedLog = job.session.denoiser != nullptr;
+        if (!a.errorLog.empty()) log = std::make_unique<ErrorLog>(a.errorLog, denoisedLog);
+        job.session.denoiseCheckpoints = denoisedLog && log;
         job.session.checkpointPowersOfTwo = true;
         job.session.onCheckpoint = [&](const Checkpoint& c) {
             lastError = computeErrorMetrics(c.image, *reference);
-            if (log) log->append(c.spp, c.seconds, lastError);
+            if (c.denoised) lastDenoisedError = computeErrorMetrics(*c.denoised, *reference);
+            if (log && denoisedLog) log->append(c.spp, c.seconds, lastError, lastDenoisedError, c.denoiseSeconds);
+            else if (log) log->append(c.spp, c.seconds, lastError);
         };
     }
     const SessionResult r = runSession(renderer, job.session, processStart);

@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/interrupt.h"
 #include "render/accum_file.h"
+#include "render/aov.h"
 #include "render/merge.h"
 #include "render/renderer.h"
 #include "vk/device.h"
@@ -124,7 +125,29 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     wo.metadata = imageMetadata(first, next, signal);
     std::vector<AtomicWrite> more;
     if (!o.partial.empty()) more.push_back({o.partial, [&](std::ostream& out) { encodeAccumFile(out, o.partial, o.key, total); }});
-    if (next > first) writeImages(total.pixelSums().mean(), o.outputs, wo, std::move(more));
+    if (next > first) {
+        const PixelSums sums = total.pixelSums();
+        const Image image = sums.mean();
+        std::unique_ptr<FeatureImages> features;
+        if (!total.aov.empty()) features = std::make_unique<FeatureImages>(featureImages(total.aov, total.width, total.height, o.aovFrame));
+        wo.layers = aovLayers(o.aovs, features.get(), sums);
+        std::unique_ptr<Image> denoised;
+        WriteOptions dwo = wo;
+        dwo.layers.clear();
+        dwo.metadata.emplace_back("vkpath.denoised", "yes: biased (the raw image is not)");
+        if (o.denoiser && features) {
+            const Image variance = sums.varianceOfMean();
+            denoised = std::make_unique<Image>(o.denoiser(DenoiseRequest{image, variance, *features}));
+            std::vector<std::filesystem::path> paths;
+            if (!o.denoiseOutput.empty()) paths.push_back(o.denoiseOutput);
+            else for (const std::filesystem::path& p : o.outputs) paths.push_back(denoisedPath(p));
+            for (const std::filesystem::path& p : paths)
+                more.push_back({p, [&denoised, &dwo, p](std::ostream& out) {
+                                    encodeImage(*denoised, imageFormatFromPath(p), dwo, out, p.string());
+                                }});
+        }
+        writeImages(image, o.outputs, wo, std::move(more));
+    }
     if (signal) std::fprintf(stderr, "vkpath: %s: stopped at sample %u of %u\n", signalName(signal), next, end);
     std::fprintf(stderr, "vkpath: %u spp on %u devices in %.2f s (rendering %.2f s): %.3f M samples/s, %.3f M rays/s, %llu non-finite samples dropped\n",
                  next - first, count, since(processStart), renderSeconds, double(total.samplesTaken) / std::max(renderSeconds, 1e-9) / 1e6,

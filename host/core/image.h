@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace vkp {
@@ -39,6 +40,15 @@ struct Image {
 
     /// Throws std::invalid_argument when rgb.size() != 3 * width * height (a programming error).
     void checkConsistent() const;
+};
+
+/// A named group of 1 to 3 channels written with an image (a feature image, render/aov.h): in EXR
+/// as channels "<name>.<channel>" of the same file, in the other formats as a file of its own
+/// (core/image_io.h layerFilePath).
+struct ImageLayer {
+    std::string name;                   ///< e.g. "albedo"; letters, digits, '_' and '-'
+    std::vector<std::string> channels;  ///< e.g. {"R", "G", "B"}, {"X", "Y", "Z"}, {"Z"}
+    Image values;                       ///< channel k of pixel i in values.rgb[3 * i + k]; the image's size
 };
 
 }  // namespace vkp

@@ -2,11 +2,13 @@
 // EXR stores channels sorted by name (B, G, R) and scanlines top to bottom (y grows downwards).
 #include <tinyexr.h>
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cstdlib>
 #include <cstring>
 #include <ostream>
+#include <stdexcept>
 #include <vector>
 
 #include "core/errors.h"
@@ -25,27 +27,46 @@ using exr::ImageGuard;
 }  // namespace
 
 void encodeExr(const Image& image, std::ostream& out, const std::string& name,
-               const std::vector<std::pair<std::string, std::string>>& metadata) {
+               const std::vector<std::pair<std::string, std::string>>& metadata, const std::vector<ImageLayer>& layers) {
     const size_t n = image.pixelCount();
-    // Planar channels in the order EXR lists them (alphabetical): B, G, R.
-    std::array<std::vector<float>, 3> planes;
-    for (int c = 0; c < 3; ++c) {
-        planes[size_t(c)].resize(n);
-        for (size_t i = 0; i < n; ++i) planes[size_t(c)][i] = image.rgb[3 * i + size_t(2 - c)];
+    // Every channel as a plane: R, G, B of the image, then each layer's; written sorted by name
+    // (OpenEXR's order: B, G, R, albedo.B, ...).
+    struct Plane {
+        std::string name;
+        std::vector<float> values;
+    };
+    std::vector<Plane> planes;
+    auto addPlane = [&](std::string channel, const Image& from, size_t k) {
+        Plane p{std::move(channel), std::vector<float>(n)};
+        for (size_t i = 0; i < n; ++i) p.values[i] = from.rgb[3 * i + k];
+        planes.push_back(std::move(p));
+    };
+    const char* rgb[3] = {"R", "G", "B"};
+    for (size_t c = 0; c < 3; ++c) addPlane(rgb[c], image, c);
+    for (const ImageLayer& layer : layers) {
+        if (layer.values.width != image.width || layer.values.height != image.height || layer.channels.empty() ||
+            layer.channels.size() > 3)
+            throw std::invalid_argument(name + ": layer " + layer.name + " does not match the image");
+        for (size_t c = 0; c < layer.channels.size(); ++c) addPlane(layer.name + "." + layer.channels[c], layer.values, c);
     }
-    std::array<unsigned char*, 3> planePtrs{};
-    for (size_t c = 0; c < 3; ++c) planePtrs[c] = reinterpret_cast<unsigned char*>(planes[c].data());
-
-    std::array<EXRChannelInfo, 3> channels{};
-    const char* names[3] = {"B", "G", "R"};
-    for (size_t c = 0; c < 3; ++c) std::strcpy(channels[c].name, names[c]);
-    std::array<int, 3> pixelTypes{TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
-    std::array<int, 3> requestedTypes = pixelTypes;  // stored as 32-bit float, no conversion to half
+    std::sort(planes.begin(), planes.end(), [](const Plane& a, const Plane& b) { return a.name < b.name; });
+    const size_t count = planes.size();
+    std::vector<unsigned char*> planePtrs(count);
+    std::vector<EXRChannelInfo> channels(count);
+    for (size_t c = 0; c < count; ++c) {
+        if (planes[c].name.size() >= sizeof(channels[c].name))
+            throw std::invalid_argument(name + ": EXR channel name too long: " + planes[c].name);
+        std::memset(&channels[c], 0, sizeof(EXRChannelInfo));
+        std::strcpy(channels[c].name, planes[c].name.c_str());
+        planePtrs[c] = reinterpret_cast<unsigned char*>(planes[c].values.data());
+    }
+    std::vector<int> pixelTypes(count, TINYEXR_PIXELTYPE_FLOAT);
+    std::vector<int> requestedTypes = pixelTypes;  // stored as 32-bit float, no conversion to half
 
     // Not HeaderGuard/ImageGuard: the arrays belong to us, FreeEXR* must not free them.
     EXRHeader header;
     InitEXRHeader(&header);
-    header.num_channels = 3;
+    header.num_channels = int(count);
     header.channels = channels.data();
     header.pixel_types = pixelTypes.data();
     header.requested_pixel_types = requestedTypes.data();
@@ -65,7 +86,7 @@ void encodeExr(const Image& image, std::ostream& out, const std::string& name,
 
     EXRImage exr;
     InitEXRImage(&exr);
-    exr.num_channels = 3;
+    exr.num_channels = int(count);
     exr.images = planePtrs.data();
     exr.width = int(image.width);
     exr.height = int(image.height);
@@ -79,6 +100,45 @@ void encodeExr(const Image& image, std::ostream& out, const std::string& name,
     }
     out.write(reinterpret_cast<const char*>(memory), std::streamsize(size));
     std::free(memory);  // tinyexr allocates with malloc
+}
+
+std::vector<std::pair<std::string, std::vector<float>>> decodeExrChannels(std::span<const uint8_t> bytes, const std::string& name,
+                                                                          const std::string& prefix, std::uint32_t& width,
+                                                                          std::uint32_t& height) {
+    EXRVersion version;
+    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
+        fail(name, "not an OpenEXR file (bad or missing magic number/version)");
+    if (version.multipart || version.non_image || version.tiled) fail(name, "multi-part, deep and tiled EXR files are not supported");
+    HeaderGuard header;
+    ExrError err;
+    int ret = ParseEXRHeaderFromMemory(&header.h, &version, bytes.data(), bytes.size(), &err.msg);
+    if (ret != TINYEXR_SUCCESS) fail(name, "invalid or truncated EXR header: " + err.text(ret));
+    for (int c = 0; c < header.h.num_channels; ++c) {
+        const int type = header.h.pixel_types[c];
+        if (type != TINYEXR_PIXELTYPE_HALF && type != TINYEXR_PIXELTYPE_FLOAT)
+            fail(name, std::string("EXR channel '") + header.h.channels[c].name + "' is not of type half or float");
+        header.h.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    }
+    ImageGuard exr;
+    exr.i.num_channels = header.h.num_channels;  // see decodeExr
+    ret = LoadEXRImageFromMemory(&exr.i, &header.h, bytes.data(), bytes.size(), &err.msg);
+    if (ret != TINYEXR_SUCCESS) {
+        InitEXRImage(&exr.i);
+        fail(name, "invalid or truncated EXR pixel data: " + err.text(ret));
+    }
+    if (exr.i.width <= 0 || exr.i.height <= 0 || exr.i.images == nullptr) fail(name, "EXR file has no pixels");
+    width = uint32_t(exr.i.width);
+    height = uint32_t(exr.i.height);
+    const size_t n = size_t(width) * height;
+    std::vector<std::pair<std::string, std::vector<float>>> out;
+    for (int c = 0; c < header.h.num_channels; ++c) {
+        const std::string channel = header.h.channels[c].name;
+        if (channel.rfind(prefix, 0) != 0) continue;
+        const float* plane = reinterpret_cast<const float*>(exr.i.images[c]);
+        if (plane == nullptr) fail(name, "EXR file has no pixels");
+        out.emplace_back(channel.substr(prefix.size()), std::vector<float>(plane, plane + n));
+    }
+    return out;
 }
 
 Image decodeExr(std::span<const uint8_t> bytes, const std::string& name) {

@@ -18,8 +18,14 @@ Image decodePfm(std::span<const uint8_t> bytes, const std::string& name);
 
 /// OpenEXR scanline image, FLOAT channels B,G,R, ZIP compression, via tinyexr.
 /// `metadata`: (name, value) string attributes of the header.
+/// `layers`: more channels, "<layer>.<channel>", every channel sorted by name as OpenEXR keeps them.
 void encodeExr(const Image& image, std::ostream& out, const std::string& name,
-               const std::vector<std::pair<std::string, std::string>>& metadata = {});
+               const std::vector<std::pair<std::string, std::string>>& metadata = {},
+               const std::vector<ImageLayer>& layers = {});
+/// The planes of the EXR channels whose names start with `prefix` ("albedo."), by the rest of the name.
+std::vector<std::pair<std::string, std::vector<float>>> decodeExrChannels(std::span<const uint8_t> bytes, const std::string& name,
+                                                                          const std::string& prefix, std::uint32_t& width,
+                                                                          std::uint32_t& height);
 /// Reads a single-part scanline EXR with R,G,B (or one Y) channels of HALF or FLOAT type.
 Image decodeExr(std::span<const uint8_t> bytes, const std::string& name);
 

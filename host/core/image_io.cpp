@@ -121,7 +121,7 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
             return;
         case ImageFormat::Exr:
             checkIntSized(image, name, "EXR");
-            detail::encodeExr(image, out, name, options.metadata);
+            detail::encodeExr(image, out, name, options.metadata, options.layers);
             return;
         case ImageFormat::Pfm: detail::encodePfm(image, out); return;
         case ImageFormat::Hdr:
@@ -131,20 +131,74 @@ void encodeImage(const Image& image, ImageFormat format, const WriteOptions& opt
     }
 }
 
+fs::path layerFilePath(const fs::path& image, const std::string& layer) {
+    const ImageFormat format = imageFormatFromPath(image);
+    fs::path p = image;
+    p.replace_filename(image.stem().string() + "." + layer +
+                       (format == ImageFormat::Png ? std::string(".pfm") : image.extension().string()));
+    return p;
+}
+
 void writeImages(const Image& image, const std::vector<fs::path>& paths, const WriteOptions& options,
                  std::vector<AtomicWrite> more) {
     std::vector<AtomicWrite> files;
+    // Layers of the formats without them, as images of their own (a one-channel layer replicated).
+    auto layerImage = [](const ImageLayer& layer) {
+        Image img = layer.values;
+        if (layer.channels.size() == 1)
+            for (std::size_t i = 0; i < img.pixelCount(); ++i) img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = img.rgb[3 * i];
+        return img;
+    };
+    WriteOptions plain = options;
+    plain.layers.clear();
     for (const fs::path& p : paths) {
         const ImageFormat format = imageFormatFromPath(p);
-        files.push_back({p, [&image, &options, format, p](std::ostream& out) { encodeImage(image, format, options, out, p.string()); }});
+        const bool own = format == ImageFormat::Exr;
+        files.push_back({p, [&image, &options, &plain, own, format, p](std::ostream& out) {
+                             encodeImage(image, format, own ? options : plain, out, p.string());
+                         }});
+        if (own) continue;
+        for (const ImageLayer& layer : options.layers) {
+            const fs::path lp = layerFilePath(p, layer.name);
+            const ImageFormat lf = imageFormatFromPath(lp);
+            files.push_back({lp, [&layer, &plain, &layerImage, lf, lp](std::ostream& out) {
+                                 WriteOptions linear = plain;
+                                 linear.exposure = 0.0;
+                                 encodeImage(layerImage(layer), lf, linear, out, lp.string());
+                             }});
+        }
     }
     for (AtomicWrite& m : more) files.push_back(std::move(m));
     writeFilesAtomic(files);
 }
 
 void writeImage(const Image& image, const fs::path& path, const WriteOptions& options) {
-    const ImageFormat format = imageFormatFromPath(path);
-    writeFileAtomic(path, [&](std::ostream& out) { encodeImage(image, format, options, out, path.string()); });
+    writeImages(image, {path}, options);
+}
+
+Image readImageLayer(const fs::path& path, const std::string& layer) {
+    if (imageFormatFromPath(path) != ImageFormat::Exr)
+        throw InputError(path.string() + ": layers are read from EXR files only (layer " + layer + ")");
+    const std::vector<uint8_t> bytes = readInputBytes(path);
+    std::uint32_t w = 0, h = 0;
+    const auto channels = detail::decodeExrChannels(bytes, path.string(), layer + ".", w, h);
+    if (channels.empty()) throw InputError(path.string() + ": no layer " + layer + " (no channel " + layer + ".*)");
+    // R,G,B or X,Y,Z in that order; one channel replicated.
+    std::vector<const std::vector<float>*> planes;
+    for (const char* order : {"RGB", "XYZ"})
+        if (planes.empty()) {
+            std::vector<const std::vector<float>*> found;
+            for (int k = 0; k < 3; ++k)
+                for (const auto& [name, values] : channels)
+                    if (name == std::string(1, order[k])) found.push_back(&values);
+            if (found.size() == 3) planes = found;
+        }
+    if (planes.empty() && channels.size() == 1) planes = {&channels[0].second, &channels[0].second, &channels[0].second};
+    if (planes.empty()) throw InputError(path.string() + ": layer " + layer + " is neither R,G,B nor X,Y,Z nor one channel");
+    Image img(w, h);
+    for (std::size_t i = 0; i < img.pixelCount(); ++i)
+        for (int k = 0; k < 3; ++k) img.rgb[3 * i + std::size_t(k)] = (*planes[std::size_t(k)])[i];
+    return img;
 }
 
 void checkOutputPath(const fs::path& path) {

@@ -30,7 +30,21 @@ struct WriteOptions {
     /// chunks (name: 1-79 Latin-1 characters), Radiance HDR header lines "name=value" (no newline
     /// in either). PFM has no place for it.
     std::vector<std::pair<std::string, std::string>> metadata;
+    /// Feature layers (render/aov.h) written with the image: EXR keeps them as channels
+    /// "<layer>.<channel>" of the same file; every other format writes each to layerFilePath (a
+    /// one-channel layer replicated into R, G and B), all or none with the image.
+    std::vector<ImageLayer> layers;
 };
+
+/// Where a layer of `image` goes in a format without layers: "<stem>.<layer><ext>" beside it
+/// (out.pfm -> out.albedo.pfm), in PFM for a PNG image (out.png -> out.albedo.pfm: the values are
+/// data, not display colours).
+std::filesystem::path layerFilePath(const std::filesystem::path& image, const std::string& layer);
+
+/// Reads layer `layer` of an EXR file written with it (e.g. "albedo": channels albedo.R,G,B;
+/// "depth": its one channel, replicated into R, G and B). Throws InputError "<path>: ..." when the
+/// file or the layer is missing or malformed.
+Image readImageLayer(const std::filesystem::path& path, const std::string& layer);
 
 /// The format for `path`'s extension (case-insensitive). Throws InputError
 /// "<path>: unknown image extension '<ext>' (supported: .png .exr .pfm .hdr)" otherwise.

@@ -24,10 +24,11 @@ constexpr const char* kKeyPrefix = "vkpath.key.";
 struct ChannelMap {
     std::string name;
     std::vector<float> RenderState::*array;  // null: the active mask
-    std::uint32_t offset;       // float within the pixel's kStateFloatsPerPixel
+    std::uint32_t offset;       // float within the pixel's floats
+    std::uint32_t stride = kStateFloatsPerPixel;  // floats per pixel of the array
 };
 
-std::vector<ChannelMap> channelMaps(bool adaptive) {
+std::vector<ChannelMap> channelMaps(bool adaptive, bool aov) {
     std::vector<ChannelMap> m;
     const char* rgb[3] = {"R", "G", "B"};
     for (std::uint32_t c = 0; c < 3; ++c) {
@@ -45,6 +46,16 @@ std::vector<ChannelMap> channelMaps(bool adaptive) {
         }
         m.push_back({"decision.count", &RenderState::decision, 3});
         m.push_back({"active", nullptr, 0});
+    }
+    if (aov) {  // shared/aov.h's sums
+        const char* xyz[3] = {"X", "Y", "Z"};
+        for (std::uint32_t c = 0; c < 3; ++c) {
+            m.push_back({std::string("aov_albedo.") + rgb[c], &RenderState::aov, c, kAovFloatsPerPixel});
+            m.push_back({std::string("aov_normal.") + xyz[c], &RenderState::aov, 4 + c, kAovFloatsPerPixel});
+            m.push_back({std::string("aov_position.") + xyz[c], &RenderState::aov, 8 + c, kAovFloatsPerPixel});
+        }
+        m.push_back({"aov_samples", &RenderState::aov, 3, kAovFloatsPerPixel});
+        m.push_back({"aov_hits", &RenderState::aov, 7, kAovFloatsPerPixel});
     }
     std::sort(m.begin(), m.end(), [](const ChannelMap& a, const ChannelMap& b) { return a.name < b.name; });  // EXR's order
     return m;
@@ -71,12 +82,12 @@ std::uint64_t parseU64(const std::filesystem::path& path, const std::string& att
 
 void encodeAccumFile(std::ostream& out, const std::filesystem::path& path, const RenderKey& key, const RenderState& state) {
     const bool adaptive = state.adaptive();
-    const std::vector<ChannelMap> maps = channelMaps(adaptive);
+    const std::vector<ChannelMap> maps = channelMaps(adaptive, !state.aov.empty());
     const std::size_t n = std::size_t(state.pixels());
     std::vector<std::vector<float>> planes(maps.size(), std::vector<float>(n));
     for (std::size_t k = 0; k < maps.size(); ++k)
         for (std::size_t i = 0; i < n; ++i)
-            planes[k][i] = maps[k].array ? (state.*maps[k].array)[i * kStateFloatsPerPixel + maps[k].offset] : float(state.active[i]);
+            planes[k][i] = maps[k].array ? (state.*maps[k].array)[i * maps[k].stride + maps[k].offset] : float(state.active[i]);
 
     std::vector<EXRChannelInfo> channels(maps.size());
     std::vector<int> types(maps.size(), TINYEXR_PIXELTYPE_FLOAT);
@@ -181,9 +192,10 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
     }
     if (f.key.entries.empty()) fail("no key (attributes vkpath.key.*)");
 
-    bool adaptive = false;
+    bool adaptive = false, aov = false;
     for (int c = 0; c < header.h.num_channels; ++c) {
         adaptive = adaptive || std::strcmp(header.h.channels[c].name, "active") == 0;
+        aov = aov || std::strcmp(header.h.channels[c].name, "aov_samples") == 0;
         if (header.h.pixel_types[c] != TINYEXR_PIXELTYPE_FLOAT)
             fail(std::string("channel ") + header.h.channels[c].name + " is not 32-bit float");
     }
@@ -203,14 +215,15 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
         st.decision.assign(n * kStateFloatsPerPixel, 0.0f);
         st.active.assign(n, 0);
     }
-    for (const ChannelMap& m : channelMaps(adaptive)) {
+    if (aov) st.aov.assign(n * kAovFloatsPerPixel, 0.0f);
+    for (const ChannelMap& m : channelMaps(adaptive, aov)) {
         int index = -1;
         for (int c = 0; c < header.h.num_channels; ++c)
             if (m.name == header.h.channels[c].name) index = c;
         if (index < 0 || !exr.i.images[index]) fail("no channel " + m.name);
         const float* plane = reinterpret_cast<const float*>(exr.i.images[index]);
         for (std::size_t i = 0; i < n; ++i) {
-            if (m.array) (st.*m.array)[i * kStateFloatsPerPixel + m.offset] = plane[i];
+            if (m.array) (st.*m.array)[i * m.stride + m.offset] = plane[i];
             else st.active[i] = plane[i] != 0.0f;
         }
     }

@@ -59,10 +59,20 @@ std::string errorLogRow(std::uint32_t spp, double seconds, const ErrorMetrics& m
     return buf;
 }
 
-ErrorLog::ErrorLog(const std::filesystem::path& path) : path_(path) {
+ErrorLog::ErrorLog(const std::filesystem::path& path, bool denoised) : path_(path), denoised_(denoised) {
     file_ = std::fopen(path.c_str(), "w");
     if (!file_) throw InputError(path.string() + ": cannot create: " + std::strerror(errno));
-    writeLine(errorLogHeader());
+    writeLine(std::string(errorLogHeader()) + (denoised ? errorLogDenoisedColumns() : ""));
+}
+
+const char* errorLogDenoisedColumns() { return ",rmse_denoised,relmse_denoised,denoise_seconds"; }
+
+void ErrorLog::append(std::uint32_t spp, double seconds, const ErrorMetrics& m, const ErrorMetrics& d, double denoiseSeconds) {
+    if (!denoised_) throw std::logic_error("ErrorLog::append: a log without denoised columns");
+    char buf[96];
+    std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.6f", d.rmse, d.relmse, denoiseSeconds);
+    writeLine(errorLogRow(spp, seconds, m) + buf);
+    ++rows_;
 }
 
 ErrorLog::~ErrorLog() {
@@ -70,6 +80,7 @@ ErrorLog::~ErrorLog() {
 }
 
 void ErrorLog::append(std::uint32_t spp, double seconds, const ErrorMetrics& m) {
+    if (denoised_) throw std::logic_error("ErrorLog::append: the log wants the denoised image's errors");
     writeLine(errorLogRow(spp, seconds, m));
     ++rows_;
 }

@@ -40,7 +40,8 @@ Image readReferenceImage(const std::filesystem::path& path, std::uint32_t width,
 class ErrorLog {
 public:
     /// Creates `path` and writes the header. Throws InputError "<path>: cannot create: <reason>".
-    explicit ErrorLog(const std::filesystem::path& path);
+    /// `denoised`: the rows also hold the denoised image's errors (errorLogDenoisedColumns).
+    explicit ErrorLog(const std::filesystem::path& path, bool denoised = false);
     ~ErrorLog();
     ErrorLog(const ErrorLog&) = delete;
     ErrorLog& operator=(const ErrorLog&) = delete;
@@ -48,6 +49,9 @@ public:
     /// Appends one row: `seconds` is wall time since the process started (s). Throws InputError
     /// "<path>: write failed: <reason>" on an I/O error.
     void append(std::uint32_t spp, double seconds, const ErrorMetrics& m);
+    /// A row of a log with denoised columns: `denoised` are the denoised image's errors, made
+    /// `denoiseSeconds` after `seconds`.
+    void append(std::uint32_t spp, double seconds, const ErrorMetrics& m, const ErrorMetrics& denoised, double denoiseSeconds);
     std::size_t rows() const { return rows_; }
 
 private:
@@ -55,7 +59,12 @@ private:
     std::filesystem::path path_;
     std::FILE* file_ = nullptr;
     std::size_t rows_ = 0;
+    bool denoised_ = false;
 };
+
+/// The columns a log with denoised images adds: ",rmse_denoised,relmse_denoised,denoise_seconds"
+/// (the denoised image is ready at seconds + denoise_seconds; it is biased, the raw one is not).
+const char* errorLogDenoisedColumns();
 
 /// The header row of the error log (without the newline).
 const char* errorLogHeader();

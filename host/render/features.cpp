@@ -73,6 +73,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_HAS_ABSORPTION, "HAS_ABSORPTION", absorption, on(absorption, "absorption")},
         {VKP_SPEC_HAS_SOLID_TEXTURES, "HAS_SOLID_TEXTURES", solidTextures, on(solidTextures, "json-textures")},
         {VKP_SPEC_HAS_MOTION, "HAS_MOTION", motion, on(motion, "motion")},
+        {VKP_SPEC_HAS_AOV, "HAS_AOV", aov, on(aov, "aov")},
     };
     static_assert(std::size(table) == VKP_SPEC_COUNT, "one entry per specialization constant");
     std::vector<SpecConstant> out(std::begin(table), std::end(table));
@@ -102,6 +103,7 @@ Features sceneFeatures(const Scene& scene, const RenderOptions& options) {
     f.solidAngleMinSize = options.solidAngleMinSize;
     f.workgroupX = options.workgroupX;
     f.workgroupY = options.workgroupY;
+    f.aov = options.aov;
     const std::uint32_t surfaceKinds = bit(gpu::PRIM_SPHERE) | bit(gpu::PRIM_QUAD) | bit(gpu::PRIM_TRIANGLE);
     if (options.fullVariant) {
         f.shapes = surfaceKinds;

@@ -39,6 +39,7 @@ struct Features {
     bool absorption = false;        ///< some dielectric absorbs inside (Material::absorption)
     bool solidTextures = false;     ///< some material has a JSON texture (Material::albedoTexture, emitTexture)
     bool motion = false;            ///< some shape moves (Shape::velocity: motion blur)
+    bool aov = false;               ///< the kernel adds feature values to the AOV sums (RenderOptions::aov)
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

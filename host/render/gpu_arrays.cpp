@@ -79,6 +79,9 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     a.width = scene.camera.width;
     a.height = scene.camera.height;
     a.adaptive = options.adaptive();
+    a.aovFrame.worldOrigin = scene.origin;
+    a.aovFrame.eye = scene.camera.lookfrom;
+    a.aovFrame.viewAxis = glm::normalize(scene.camera.lookat - scene.camera.lookfrom);
     // The kernel traverses the 4-wide layout: FlatBvh::wideNodes, or collapsed here for a FlatBvh
     // that came from flattenBvh alone.
     a.nodes = bvh.wideNodes.empty() ? buildWideNodes(bvh) : bvh.wideNodes;
@@ -168,6 +171,7 @@ std::uint64_t GpuArrays::bytesPerPixel(std::uint32_t binding) const {
         case VKP_BINDING_ACCUM_SQ: return kAccumBytesPerPixel;
         case VKP_BINDING_DECISION: return adaptive ? kAccumBytesPerPixel : 0;
         case VKP_BINDING_ACTIVE: return adaptive ? 4 : 0;
+        case VKP_BINDING_AOV: return features.aov ? kAovBytesPerPixel : 0;
         default: return 0;
     }
 }
@@ -176,9 +180,7 @@ std::vector<BufferSize> GpuArrays::sizes() const {
     std::vector<BufferSize> out;
     for (const KernelBinding& b : kKernelBindings) {
         BufferSize s{&b};
-        const bool perPixel = b.binding == VKP_BINDING_ACCUM_SUM || b.binding == VKP_BINDING_ACCUM_SQ ||
-                              b.binding == VKP_BINDING_DECISION || b.binding == VKP_BINDING_ACTIVE;
-        if (perPixel) s.bytes = std::max<std::uint64_t>(pixels() * bytesPerPixel(b.binding), 16);  // a token when unused
+        if (isPerPixelBinding(b.binding)) s.bytes = std::max<std::uint64_t>(pixels() * bytesPerPixel(b.binding), 16);  // a token when unused
         else if (b.binding == VKP_BINDING_COUNTERS) s.bytes = gpu::COUNTER_COUNT * 4;
         else s.bytes = hostData(b.binding).size();
         if (b.format != TexelFormat::None) s.texels = s.bytes / texelBytes(b.format);
@@ -198,8 +200,8 @@ std::uint64_t bandBytesLimit(const DeviceLimits& l) {
 /// Bytes of a row of the widest per-pixel buffer.
 std::uint64_t widestRowBytes(const GpuArrays& a) {
     std::uint64_t perPixel = 0;
-    for (std::uint32_t b : {VKP_BINDING_ACCUM_SUM, VKP_BINDING_ACCUM_SQ, VKP_BINDING_DECISION, VKP_BINDING_ACTIVE})
-        perPixel = std::max(perPixel, a.bytesPerPixel(b));
+    for (const KernelBinding& b : kKernelBindings)
+        if (isPerPixelBinding(b.binding)) perPixel = std::max(perPixel, a.bytesPerPixel(b.binding));
     return perPixel * a.width;
 }
 

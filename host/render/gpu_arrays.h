@@ -13,10 +13,12 @@
 #include <glm/glm.hpp>
 
 #include "bvh/flatten.h"
+#include "render/aov.h"
 #include "render/features.h"
 #include "render/kernel_bindings.h"
 #include "render/render_options.h"
 #include "scene/scene.h"
+#include "shared/aov.h"
 #include "shared/gpu_types.h"
 #include "shared/instance.h"
 #include "shared/wide_bvh.h"
@@ -56,6 +58,8 @@ struct BufferSize {
 inline constexpr std::uint64_t kHostBytesPerPixel = 32 + 2 * 32 + 12;
 /// Device bytes per pixel of each accumulation buffer: two vec4 (the sum and its compensation).
 inline constexpr std::uint64_t kAccumBytesPerPixel = 2 * 16;
+/// Device bytes per pixel of the feature images' sums (`--aov`): shared/aov.h's vec4s.
+inline constexpr std::uint64_t kAovBytesPerPixel = 16 * gpu::AOV_VEC4_PER_PIXEL;
 /// Adaptive sampling dispatches its active pixels as rows of this many workgroups.
 inline constexpr std::uint32_t kAdaptiveGroupsPerRow = 4096;
 
@@ -81,6 +85,8 @@ struct GpuArrays {
     std::size_t imageCount = 0;
     std::string largestImage;  ///< name and size, e.g. "\"checker.png\" 512x512" (empty: no image)
     std::uint32_t envWidth = 0, envHeight = 0;
+    /// The kernel's frame for the feature images' position and depth (render/aov.h).
+    AovFrame aovFrame;
 
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }
     /// The host data of a read-only binding, or empty for a buffer the kernel writes (zeroed).

@@ -43,6 +43,7 @@ inline constexpr KernelBinding kKernelBindings[] = {
     {VKP_BINDING_TEXELS, BindingKind::UniformTexelBuffer, TexelFormat::R32Uint, "uTexels"},
     {VKP_BINDING_INSTANCES, BindingKind::UniformTexelBuffer, TexelFormat::Rgba32Uint, "uInstances"},
     {VKP_BINDING_MOTION, BindingKind::UniformTexelBuffer, TexelFormat::Rgba32Uint, "uMotion"},
+    {VKP_BINDING_AOV, BindingKind::StorageBuffer, TexelFormat::None, "aovSums"},
 };
 static_assert(std::size(kKernelBindings) == VKP_BINDING_COUNT, "one entry per binding of shared/kernel_interface.h");
 
@@ -53,5 +54,12 @@ constexpr bool kernelBindingsInOrder() {
     return true;
 }
 static_assert(kernelBindingsInOrder(), "kKernelBindings in binding order, without gaps");
+
+/// The bindings that hold something per pixel (accumulation, adaptive sampling, feature images):
+/// sized by the image, one buffer of each per band of rows (render/gpu_arrays.h planBands).
+constexpr bool isPerPixelBinding(std::uint32_t binding) {
+    return binding == VKP_BINDING_ACCUM_SUM || binding == VKP_BINDING_ACCUM_SQ || binding == VKP_BINDING_DECISION ||
+           binding == VKP_BINDING_ACTIVE || binding == VKP_BINDING_AOV;
+}
 
 }  // namespace vkp

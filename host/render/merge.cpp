@@ -45,6 +45,37 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
             dst[px * 8 + 4 + c] = float(total[i] - double(hi));
         }
     }
+    // Feature images (every part has them or none: the key says so): shared/aov.h's running means
+    // and counts, combined as means weighted by their counts, in double.
+    if (!states.front()->aov.empty()) {
+        const std::size_t n = states.front()->aov.size();
+        std::vector<double> aov(n, 0.0);
+        for (const RenderState* s : states) {
+            if (s->aov.size() != n) throw InputError("merge: some parts have feature images (--aov) and some have not");
+            for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel) {
+                const float* a = s->aov.data() + p;
+                const double samples = a[3], hits = a[7];
+                for (int c = 0; c < 3; ++c) {
+                    aov[p + c] += samples * a[c];
+                    aov[p + 4 + c] += samples * a[4 + c];
+                    aov[p + 8 + c] += hits * a[8 + c];
+                }
+                aov[p + 3] += samples;
+                aov[p + 7] += hits;
+            }
+        }
+        m.aov.assign(n, 0.0f);
+        for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel) {
+            const double samples = aov[p + 3], hits = aov[p + 7];
+            for (int c = 0; c < 3; ++c) {
+                m.aov[p + c] = samples > 0.0 ? float(aov[p + c] / samples) : 0.0f;
+                m.aov[p + 4 + c] = samples > 0.0 ? float(aov[p + 4 + c] / samples) : 0.0f;
+                m.aov[p + 8 + c] = hits > 0.0 ? float(aov[p + 8 + c] / hits) : 0.0f;
+            }
+            m.aov[p + 3] = float(samples);
+            m.aov[p + 7] = float(hits);
+        }
+    }
     for (const RenderState* s : states) {
         m.samplesTaken += s->samplesTaken;
         m.counters.rays += s->counters.rays;

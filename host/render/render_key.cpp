@@ -42,6 +42,7 @@ RenderKey renderKey(const GpuArrays& arrays, const RenderOptions& options) {
     add("solid-angle min", number(options.solidAngleMinSize));
     add("adaptive", options.adaptive() ? number(options.adaptiveThreshold) + " from " + std::to_string(options.adaptiveMinSpp) + " spp" : "off");
     add("variant", options.fullVariant ? "full" : "auto");
+    add("aov", options.aov ? "on" : "off");  // the sums of the feature images are part of the state
     Fnv1a kernel;  // the kernel's code: a build with other shaders takes other samples
     kernel.add(std::as_bytes(std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]))));
     char kernelHex[24];

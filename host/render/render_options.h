@@ -64,6 +64,9 @@ struct RenderOptions {
     std::uint32_t workgroupX = 8, workgroupY = 8;
     bool linearTiles = false;
     bool fullVariant = false;  ///< compile every feature in (`--variant full`)
+    /// Add every sample's feature values (albedo, normal, position: shared/aov.h) to per-pixel sums
+    /// (`--aov`); the image's samples are unchanged.
+    bool aov = false;
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;

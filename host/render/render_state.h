@@ -7,12 +7,15 @@
 #include <vector>
 
 #include "render/renderer.h"
+#include "shared/aov.h"
 
 namespace vkp {
 
 /// Floats per pixel of each accumulation array: two vec4 as on the device, (hi.rgba, lo.rgba), the
 /// compensated pair of shared/compensated_sum.h.
 inline constexpr std::uint32_t kStateFloatsPerPixel = 8;
+/// Floats per pixel of the feature images' sums (`--aov`): shared/aov.h's layout.
+inline constexpr std::uint32_t kAovFloatsPerPixel = 4 * gpu::AOV_VEC4_PER_PIXEL;
 
 struct RenderState {
     std::uint32_t width = 0, height = 0;
@@ -29,6 +32,9 @@ struct RenderState {
     /// of squares, 0) and one byte per pixel, 1 = still receiving samples.
     std::vector<float> decision;
     std::vector<std::uint8_t> active;
+    /// Feature images only (`--aov`, else empty): kAovFloatsPerPixel floats per pixel, the device's
+    /// sums (shared/aov.h).
+    std::vector<float> aov;
 
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }
     bool adaptive() const { return !active.empty(); }

@@ -69,23 +69,15 @@ Image PixelSums::varianceOfMean() const {
     return img;
 }
 
-namespace {
-/// The bindings that are per pixel: one buffer of each per band.
-bool perPixel(std::uint32_t binding) {
-    return binding == VKP_BINDING_ACCUM_SUM || binding == VKP_BINDING_ACCUM_SQ || binding == VKP_BINDING_DECISION ||
-           binding == VKP_BINDING_ACTIVE;
-}
-}  // namespace
-
 struct Renderer::Impl {
     /// One band of rows with its own per-pixel buffers and descriptor set (the set's index).
     struct BandBuffers {
         Band band;
-        std::unique_ptr<GpuBuffer> sum, sumSq, decision, active;
+        std::unique_ptr<GpuBuffer> sum, sumSq, decision, active, aov;
         std::uint32_t activeCount = 0;  ///< adaptive sampling: entries of `active`
         GpuBuffer& at(std::uint32_t binding) {
             return binding == VKP_BINDING_ACCUM_SUM ? *sum : binding == VKP_BINDING_ACCUM_SQ ? *sumSq
-                   : binding == VKP_BINDING_DECISION ? *decision : *active;
+                   : binding == VKP_BINDING_DECISION ? *decision : binding == VKP_BINDING_AOV ? *aov : *active;
         }
     };
     std::vector<std::unique_ptr<GpuBuffer>> shared;  ///< per binding; null for the per-pixel ones
@@ -116,7 +108,7 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
     for (const BufferSize& size : arrays.sizes()) {
         const KernelBinding& b = *size.binding;
         desc.bindings.push_back(descriptorType(b.kind));
-        if (perPixel(b.binding)) {
+        if (isPerPixelBinding(b.binding)) {
             impl_->shared.push_back(nullptr);
             continue;
         }
@@ -138,13 +130,14 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
         bb.sumSq = make(VKP_BINDING_ACCUM_SQ);
         bb.decision = make(VKP_BINDING_DECISION);  // 16-byte tokens without adaptive sampling
         bb.active = make(VKP_BINDING_ACTIVE);
+        bb.aov = make(VKP_BINDING_AOV);  // 16-byte tokens without feature images
         impl_->bands.push_back(std::move(bb));
     }
     if (adaptive()) uploadActiveLists();
     device.submitAndWait([&](vk::raii::CommandBuffer& cmd) {
         cmd.fillBuffer(impl_->counters().buffer(), 0, VK_WHOLE_SIZE, 0);
         for (Impl::BandBuffers& bb : impl_->bands)
-            for (GpuBuffer* b : {bb.sum.get(), bb.sumSq.get(), bb.decision.get()}) cmd.fillBuffer(b->buffer(), 0, VK_WHOLE_SIZE, 0);
+            for (GpuBuffer* b : {bb.sum.get(), bb.sumSq.get(), bb.decision.get(), bb.aov.get()}) cmd.fillBuffer(b->buffer(), 0, VK_WHOLE_SIZE, 0);
     });
 
     desc.spirv = std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]));
@@ -159,7 +152,7 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
         std::size_t view = 0;
         for (const KernelBinding& b : kKernelBindings) {
             if (b.kind == BindingKind::UniformTexelBuffer) impl_->pipeline->bindTexelView(b.binding, *impl_->views[view++], set);
-            else if (perPixel(b.binding)) impl_->pipeline->bindBuffer(b.binding, impl_->bands[set].at(b.binding).buffer(), set);
+            else if (isPerPixelBinding(b.binding)) impl_->pipeline->bindBuffer(b.binding, impl_->bands[set].at(b.binding).buffer(), set);
             else impl_->pipeline->bindBuffer(b.binding, impl_->shared.at(b.binding)->buffer(), set);
         }
     }
@@ -247,18 +240,21 @@ void Renderer::submitSamples(std::uint32_t count) {
 }
 
 namespace {
-/// Reads one per-pixel binding of every band into `out` (kStateFloatsPerPixel floats per pixel).
+/// Reads one per-pixel binding of every band into `out` (`floats` per pixel: kStateFloatsPerPixel
+/// for the accumulation buffers, kAovFloatsPerPixel for the feature images).
 template <class Bands>
-void downloadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, std::vector<float>& out) {
+void downloadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, std::vector<float>& out,
+                      std::size_t floats = kStateFloatsPerPixel) {
     for (auto& bb : bands)
-        bb.at(binding).download(out.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
-                                std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+        bb.at(binding).download(out.data() + std::size_t(bb.band.firstRow) * width * floats,
+                                std::size_t(bb.band.rows) * width * floats * sizeof(float));
 }
 template <class Bands>
-void uploadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, const std::vector<float>& in) {
+void uploadPerPixel(Bands& bands, std::uint32_t binding, std::uint32_t width, const std::vector<float>& in,
+                    std::size_t floats = kStateFloatsPerPixel) {
     for (auto& bb : bands)
-        bb.at(binding).upload(in.data() + std::size_t(bb.band.firstRow) * width * kStateFloatsPerPixel,
-                              std::size_t(bb.band.rows) * width * kStateFloatsPerPixel * sizeof(float));
+        bb.at(binding).upload(in.data() + std::size_t(bb.band.firstRow) * width * floats,
+                              std::size_t(bb.band.rows) * width * floats * sizeof(float));
 }
 
 /// Combines each pixel's compensated pairs (kStateFloatsPerPixel floats: hi.rgba, lo.rgba;
@@ -318,7 +314,15 @@ RenderState Renderer::state() {
         downloadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, st.decision);
         st.active = activeMask_;
     }
+    if (features_.aov) st.aov = readAovSums();
     return st;
+}
+
+std::vector<float> Renderer::readAovSums() {
+    if (!features_.aov) return {};
+    std::vector<float> out(std::size_t(width_) * height_ * kAovFloatsPerPixel);
+    downloadPerPixel(impl_->bands, VKP_BINDING_AOV, width_, out, kAovFloatsPerPixel);
+    return out;
 }
 
 void Renderer::restore(const RenderState& st, const std::string& what) {
@@ -332,6 +336,12 @@ void Renderer::restore(const RenderState& st, const std::string& what) {
     if (st.sum.size() != floats || st.sumSq.size() != floats || (adaptive() && (st.decision.size() != floats || st.active.size() != floats / kStateFloatsPerPixel)))
         throw InputError(what + ": the state's arrays do not match its size");
     if (st.nextSample < st.firstSample) throw InputError(what + ": the state's next sample precedes its first");
+    if (!st.aov.empty() != features_.aov)
+        throw InputError(what + (features_.aov ? ": the state has no feature images, this render has (--aov)"
+                                               : ": the state has feature images (--aov), this render has not"));
+    if (features_.aov && st.aov.size() != floats / kStateFloatsPerPixel * kAovFloatsPerPixel)
+        throw InputError(what + ": the state's feature images do not match its size");
+    if (features_.aov) uploadPerPixel(impl_->bands, VKP_BINDING_AOV, width_, st.aov, kAovFloatsPerPixel);
     uploadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SUM, width_, st.sum);
     uploadPerPixel(impl_->bands, VKP_BINDING_ACCUM_SQ, width_, st.sumSq);
     std::uint32_t raw[gpu::COUNTER_COUNT] = {};

@@ -97,6 +97,9 @@ public:
     std::uint32_t bandCount() const;
 
     PixelSums readSums();
+    /// The feature images' sums (`--aov`; render/aov.h makes the images), kAovFloatsPerPixel floats
+    /// per pixel, row by row from the top; empty without RenderOptions::aov.
+    std::vector<float> readAovSums();
     Image image() { return readSums().mean(); }
     RenderCounters counters();
     const Features& features() const { return features_; }

@@ -86,15 +86,38 @@ std::uint32_t nextPowerOfTwoAbove(std::uint32_t n) {
     return p;
 }
 
-void writeDumps(const Image& img, const SessionOptions& o, std::uint32_t spp) {
+/// The image of the render at one moment, with what its outputs need besides.
+struct Frame {
+    PixelSums sums;
+    Image image;
+    std::unique_ptr<FeatureImages> features;  ///< with RenderOptions::aov
+    std::unique_ptr<Image> denoised;
+    double denoiseSeconds = 0.0;
+};
+
+/// Dumps at `spp`: the image in every dump format, EXR with the AOV layers; the denoised image
+/// beside it when there is one.
+void writeDumps(const Frame& fr, const SessionOptions& o, std::uint32_t spp) {
     std::filesystem::create_directories(o.dumpDir);
     for (ImageFormat f : o.dumpFormats) {
         WriteOptions wo;
         wo.exposure = o.exposure;
-        writeImage(img, o.dumpDir / dumpFileName(spp, f), wo);
+        if (f == ImageFormat::Exr) wo.layers = aovLayers(o.aovs, fr.features.get(), fr.sums);
+        const std::filesystem::path p = o.dumpDir / dumpFileName(spp, f);
+        writeImage(fr.image, p, wo);
+        if (fr.denoised) {
+            wo.layers.clear();
+            writeImage(*fr.denoised, denoisedPath(p), wo);
+        }
     }
 }
 }  // namespace
+
+std::filesystem::path denoisedPath(const std::filesystem::path& path) {
+    std::filesystem::path p = path;
+    p.replace_filename(path.stem().string() + ".denoised" + path.extension().string());
+    return p;
+}
 
 SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::time_point processStart) {
     SessionResult res;
@@ -104,18 +127,36 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     res.pixels = pixels;
     const bool powersOfTwo = o.onCheckpoint && o.checkpointPowersOfTwo && o.dumpEvery == 0;
     std::uint32_t lastCheckpoint = 0;
-    // Reads the image back, hands it to onCheckpoint (and returns it for dumps or outputs).
-    // `state`: the render's state when already read back (the image is then made from it).
-    auto checkpoint = [&](std::uint32_t spp, const RenderState* state) {
+    const bool kernelAovs = renderer.features().aov;
+    if (o.denoiser && !kernelAovs) throw std::logic_error("runSession: the denoiser needs the feature images (RenderOptions::aov)");
+    double denoiseTotal = 0.0;  // seconds spent denoising at checkpoints: not in the log's wall time
+    // Reads the image back (with its sums, feature images and, when `denoise`, the denoised
+    // image), hands it to onCheckpoint and returns it for dumps or outputs. `state`: the render's
+    // state when already read back (the image is then made from it).
+    auto checkpoint = [&](std::uint32_t spp, const RenderState* state, bool denoise) {
         const auto t0 = Clock::now();
-        Image img = state ? state->pixelSums().mean() : renderer.image();
+        Frame fr;
+        fr.sums = state ? state->pixelSums() : renderer.readSums();
+        fr.image = fr.sums.mean();
+        if (kernelAovs) {
+            const std::vector<float> aov = state ? state->aov : renderer.readAovSums();
+            fr.features = std::make_unique<FeatureImages>(featureImages(aov, fr.sums.width, fr.sums.height, o.aovFrame));
+        }
+        const double at = secondsSince(processStart) - denoiseTotal;
+        if (denoise && o.denoiser) {
+            const auto t1 = Clock::now();
+            const Image variance = fr.sums.varianceOfMean();
+            fr.denoised = std::make_unique<Image>(o.denoiser(DenoiseRequest{fr.image, variance, *fr.features}));
+            fr.denoiseSeconds = secondsSince(t1);
+            denoiseTotal += fr.denoiseSeconds;
+        }
         if (o.onCheckpoint && spp != lastCheckpoint) {
-            o.onCheckpoint(Checkpoint{spp, secondsSince(processStart), img});
+            o.onCheckpoint(Checkpoint{spp, at, fr.image, fr.denoised.get(), fr.denoiseSeconds});
             lastCheckpoint = spp;
             ++res.checkpoints;
         }
         res.checkpointSeconds += secondsSince(t0);
-        return img;
+        return fr;
     };
     double perSample = 0.0;  // seconds per spp, measured
     int batches = 0;
@@ -166,10 +207,10 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
             const bool dump = o.dumpEvery && now % o.dumpEvery == 0;
             const bool power = powersOfTwo && (now & (now - 1)) == 0;
             if (dump || power) {
-                const Image img = checkpoint(now, nullptr);
+                const Frame fr = checkpoint(now, nullptr, (dump && o.denoiseDumps) || o.denoiseCheckpoints);
                 if (dump) {
                     const auto t1 = Clock::now();
-                    writeDumps(img, o, now);
+                    writeDumps(fr, o, now);
                     res.outputSeconds += secondsSince(t1);
                 }
             }
@@ -181,11 +222,12 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     // The partial and the checkpoint need the state; read the device once and make the image from it.
     std::shared_ptr<const RenderState> state;
     if (!o.partial.empty() || !o.checkpoint.empty()) state = std::make_shared<const RenderState>(renderer.state());
-    const Image img = checkpoint(renderer.samplesDone(), state.get());
+    const Frame fr = checkpoint(renderer.samplesDone(), state.get(), o.denoiser != nullptr);
+    const Image& img = fr.image;
     for (std::size_t i = 0; i < img.pixelCount(); ++i)
         res.nonfinitePixels += !(std::isfinite(img.rgb[3 * i]) && std::isfinite(img.rgb[3 * i + 1]) && std::isfinite(img.rgb[3 * i + 2]));
     const auto t1 = Clock::now();
-    if (o.dumpEvery && !res.signal) writeDumps(img, o, renderer.samplesDone());
+    if (o.dumpEvery && !res.signal) writeDumps(fr, o, renderer.samplesDone());
     // The outputs, the partial and the checkpoint: all or none.
     std::vector<AtomicWrite> states;
     for (const std::filesystem::path& p : {o.partial, o.checkpoint})
@@ -194,8 +236,24 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     WriteOptions wo;
     wo.exposure = o.exposure;
     wo.metadata = imageMetadata(first, renderer.samplesDone(), res.signal);
+    // The denoised image: beside every output, or where --denoise-output says; never a raw one.
+    WriteOptions denoisedOptions = wo;
+    denoisedOptions.metadata.emplace_back("vkpath.denoised", "yes: biased (the raw image is not)");
+    if (fr.denoised) {
+        std::vector<std::filesystem::path> paths;
+        if (!o.denoiseOutput.empty()) paths.push_back(o.denoiseOutput);
+        else for (const std::filesystem::path& p : o.outputs) paths.push_back(denoisedPath(p));
+        for (const std::filesystem::path& p : paths) {
+            const ImageFormat format = imageFormatFromPath(p);
+            states.push_back({p, [&fr, &denoisedOptions, format, p](std::ostream& out) {
+                                  encodeImage(*fr.denoised, format, denoisedOptions, out, p.string());
+                              }});
+        }
+    }
+    wo.layers = aovLayers(o.aovs, fr.features.get(), fr.sums);
     writeImages(img, o.outputs, wo, std::move(states));
     res.outputSeconds += secondsSince(t1);
+    res.denoiseSeconds = fr.denoiseSeconds;
     res.firstSample = first;
     res.spp = renderer.samplesDone();
     res.samplesTaken = renderer.samplesTaken();

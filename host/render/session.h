@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "render/aov.h"
 #include "render/render_key.h"
 #include "render/renderer.h"
 
@@ -19,6 +20,18 @@ struct Checkpoint {
     std::uint32_t spp = 0;  ///< samples per pixel in `image`
     double seconds = 0.0;   ///< wall time since process start when `image` was read back (s)
     const Image& image;     ///< the mean image so far (linear radiance)
+    /// The denoised image (SessionOptions::denoiseCheckpoints), else null; made after `seconds`,
+    /// in denoiseSeconds (so a denoised image is ready at seconds + denoiseSeconds).
+    const Image* denoised = nullptr;
+    double denoiseSeconds = 0.0;
+};
+
+/// What the denoiser gets (render/denoiser.h): the mean image, the variance of each pixel's mean,
+/// and the feature images.
+struct DenoiseRequest {
+    const Image& color;
+    const Image& variance;
+    const FeatureImages& features;
 };
 
 struct SessionOptions {
@@ -46,7 +59,23 @@ struct SessionOptions {
     std::filesystem::path partial;
     /// The render's key, written into the checkpoint and the partial (render/render_key.h).
     RenderKey key;
+    /// `--aov`: feature layers of the final images and of EXR dumps (render/aov.h). The kernel's
+    /// ones need RenderOptions::aov; aovFrame places their positions (GpuArrays::aovFrame).
+    std::vector<Aov> aovs;
+    AovFrame aovFrame;
+    /// `--denoise`: the denoiser (null: none). Needs RenderOptions::aov (its guides).
+    std::function<Image(const DenoiseRequest&)> denoiser;
+    /// Where the denoised final image goes: `--denoise-output FILE`, else beside every output
+    /// (denoisedPath). Never over the raw image.
+    std::filesystem::path denoiseOutput;
+    /// `--denoise-dumps`: every dump gets frame-<spp>.denoised.<ext> too.
+    bool denoiseDumps = false;
+    /// Denoise at every checkpoint too, for onCheckpoint (an error log of the denoised image).
+    bool denoiseCheckpoints = false;
 };
+
+/// The denoised image's file beside output `path`: "<stem>.denoised<ext>" (out.png -> out.denoised.png).
+std::filesystem::path denoisedPath(const std::filesystem::path& path);
 
 struct SessionResult {
     std::uint32_t spp = 0;
@@ -67,6 +96,7 @@ struct SessionResult {
     std::uint64_t nonfinitePixels = 0;  ///< pixels of the final image that are NaN or Inf (0 unless something is wrong)
     int signal = 0;                  ///< SIGINT or SIGTERM that ended the render early (core/interrupt.h), else 0
     std::uint32_t stateWrites = 0;   ///< checkpoint files written (periodic ones and the final one)
+    double denoiseSeconds = 0.0;     ///< the final image's denoising (0 without --denoise)
 };
 
 /// The text metadata of an output image of the render that holds samples [first, next):

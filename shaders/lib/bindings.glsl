@@ -34,6 +34,8 @@ layout(set = 0, binding = VKP_BINDING_ENV_DIST) uniform samplerBuffer uEnvDist; 
 // Adaptive sampling (host/render/adaptive.h): [2i], [2i+1] = pixel i's decision-stream sums.
 layout(set = 0, binding = VKP_BINDING_DECISION, std430) buffer DecisionSums { vec4 decisionSums[]; };
 layout(set = 0, binding = VKP_BINDING_ACTIVE, std430) readonly buffer ActivePixels { uint activePixels[]; };
+// Feature images (HAS_AOV): AOV_VEC4_PER_PIXEL vec4 of sums per pixel of the band (shared/aov.h).
+layout(set = 0, binding = VKP_BINDING_AOV, std430) buffer AovSums { vec4 aovSums[]; };
 // Vertex attributes and textures (lib/surface.glsl; layouts: host/render/texture_pack.h).
 layout(set = 0, binding = VKP_BINDING_ATTRIBUTES) uniform usamplerBuffer uAttributes;
 layout(set = 0, binding = VKP_BINDING_TEX_INFO) uniform usamplerBuffer uTexInfo;

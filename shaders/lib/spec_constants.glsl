@@ -45,6 +45,9 @@ layout(constant_id = VKP_SPEC_HAS_SOLID_TEXTURES) const bool HAS_SOLID_TEXTURES 
 // each path draws a time (shared/sample_stream.h sampleTime) and every primitive is fetched moved
 // to it (lib/bindings.glsl fetchPrim, GpuMotion).
 layout(constant_id = VKP_SPEC_HAS_MOTION) const bool HAS_MOTION = true;
+// Feature images (`--aov`, shared/aov.h): every sample adds the albedo and normal of its first
+// non-specular vertex and the position of its first hit to the pixel's AOV sums.
+layout(constant_id = VKP_SPEC_HAS_AOV) const bool HAS_AOV = true;
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;

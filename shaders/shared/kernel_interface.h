@@ -31,7 +31,8 @@
 #define VKP_BINDING_TEXELS 14        // texel R32UI: RGBA8 texels of every image
 #define VKP_BINDING_INSTANCES 15     // texel RGBA32UI: GpuInstance (shared/instance.h)
 #define VKP_BINDING_MOTION 16        // texel RGBA32UI: GpuMotion per primitive (motion blur; a token texel without)
-#define VKP_BINDING_COUNT 17
+#define VKP_BINDING_AOV 17           // storage: per pixel, sums of the feature images (shared/aov.h; a token without HAS_AOV)
+#define VKP_BINDING_COUNT 18
 
 // ---- Specialization constants (shaders/lib/spec_constants.glsl declares them in this order) ----
 // The variant of the kernel that a scene needs: a false constant removes the code it guards from
@@ -60,6 +61,7 @@
 #define VKP_SPEC_HAS_ABSORPTION 21         // bool: some dielectric absorbs inside (Beer-Lambert)
 #define VKP_SPEC_HAS_SOLID_TEXTURES 22     // bool: some material has a JSON texture (shared/solid_texture.h)
 #define VKP_SPEC_HAS_MOTION 23             // bool: some primitive moves over the shutter interval (GpuMotion)
-#define VKP_SPEC_COUNT 24
+#define VKP_SPEC_HAS_AOV 24                // bool: add every sample's feature values to VKP_BINDING_AOV (`--aov`)
+#define VKP_SPEC_COUNT 25
 
 #endif

@@ -2,7 +2,11 @@
 // and the exit code for a device that does not exist. Validation layer on (--validate).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 
@@ -22,6 +26,58 @@ struct CliRender : ::testing::Test {
     ProcessResult run(const std::vector<std::string>& args) { return runProcess(vkpathBinary(), args, dir); }
     std::string scene(const char* name) { return (scenesDir() / name).string(); }
 };
+
+/// The path of `name` on PATH, or empty.
+std::filesystem::path onPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "";
+    for (std::size_t start = 0; start <= dirs.size();) {
+        const std::size_t colon = std::min(dirs.find(':', start), dirs.size());
+        const std::filesystem::path p = std::filesystem::path(dirs.substr(start, colon - start)) / name;
+        if (!dirs.substr(start, colon - start).empty() && access(p.c_str(), X_OK) == 0) return p;
+        start = colon + 1;
+    }
+    return {};
+}
+
+// Feature images: layers of the EXR (read back here and by OpenImageIO's oiiotool, which reads
+// with the OpenEXR library), the same values as files beside the PNG, and one usage line for a bad list.
+TEST_F(CliRender, FeatureImagesAreLayersOfTheExrAndFilesBesideThePng) {
+    VKP_REQUIRE_DEVICE(dev);
+    for (const char* f : {"f.exr", "f.png", "f.albedo.pfm", "f.spp.pfm"}) std::filesystem::remove(dir / f);
+    const ProcessResult r = run({"render", scene("cornell-book3.json"), "--validate", "--spp", "4", "--width", "24",
+                                 "--height", "16", "--aov", "all", "-o", "f.exr", "-o", "f.png", "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* layer : {"albedo", "normal", "depth", "position", "variance", "spp"}) {
+        const Image inExr = readImageLayer(dir / "f.exr", layer);
+        const Image beside = readImage(dir / (std::string("f.") + layer + ".pfm"));
+        EXPECT_EQ(inExr.width, 24u);
+        EXPECT_EQ(inExr.rgb, beside.rgb) << layer;
+    }
+    const Image spp = readImageLayer(dir / "f.exr", "spp");
+    for (float v : spp.rgb) EXPECT_EQ(v, 4.0f);
+    const Image albedo = readImageLayer(dir / "f.exr", "albedo");
+    EXPECT_GT(*std::max_element(albedo.rgb.begin(), albedo.rgb.end()), 0.5f);
+    EXPECT_FALSE(std::filesystem::exists(dir / "f.albedo.png"));
+
+    const std::filesystem::path oiiotool = onPath("oiiotool");
+    if (oiiotool.empty()) GTEST_SKIP() << "oiiotool (Debian's openimageio-tools, tools/deps.sh) is not installed";
+    const ProcessResult info = runProcess(oiiotool, {"--info", "-v", "f.exr"}, dir);
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    for (const char* channel : {"albedo.R", "albedo.B", "normal.X", "normal.Z", "depth.Z", "position.Y", "variance.G", "spp.V"})
+        EXPECT_NE(info.out.find(channel), std::string::npos) << channel << " in " << info.out;
+    EXPECT_NE(info.out.find("17 channel"), std::string::npos) << info.out;
+    // oiiotool pulls the albedo layer out as an image of its own: the same numbers.
+    std::filesystem::remove(dir / "albedo-only.exr");
+    const ProcessResult ch = runProcess(oiiotool, {"f.exr", "--ch", "albedo.R,albedo.G,albedo.B", "--chnames", "R,G,B", "-o", "albedo-only.exr"}, dir);
+    ASSERT_EQ(ch.exitCode, 0) << ch.err;
+    EXPECT_EQ(readImage(dir / "albedo-only.exr").rgb, albedo.rgb);
+
+    const ProcessResult bad = run({"render", scene("cornell-book3.json"), "--aov", "albedo,shadows", "-o", "bad.exr"});
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find("--aov: unknown AOV 'shadows'"), std::string::npos) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr"));
+}
 
 TEST_F(CliRender, WritesEveryRequestedFormat) {
     VKP_REQUIRE_DEVICE(dev);

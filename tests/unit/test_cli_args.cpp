@@ -118,6 +118,26 @@ TEST(CliArgs, UsageErrors) {
     EXPECT_EQ(errorOf({"render", "s.json", "--spp", "1"}), "");
 }
 
+// Feature images and the denoiser: which AOVs, what the kernel gathers, the denoiser's files.
+TEST(CliArgs, FeatureImagesAndDenoising) {
+    CliArgs a = parse({"render", "s.json", "--aov", "spp,variance"});
+    EXPECT_EQ(a.session.aovs, (std::vector<Aov>{Aov::Variance, Aov::Spp}));
+    EXPECT_FALSE(a.render.aov);  // from the accumulation sums: the kernel needs nothing more
+    a = parse({"render", "s.json", "--aov", "depth"});
+    EXPECT_TRUE(a.render.aov);
+    a = parse({"render", "s.json", "--denoise", "--denoise-output", "d.exr", "--dump-every", "4", "--denoise-dumps"});
+    EXPECT_TRUE(a.denoise);
+    EXPECT_TRUE(a.render.aov);  // the denoiser's guides
+    EXPECT_TRUE(a.session.aovs.empty());
+    EXPECT_EQ(a.session.denoiseOutput, "d.exr");
+    EXPECT_TRUE(a.session.denoiseDumps);
+    EXPECT_NE(errorOf({"render", "s.json", "--aov", "albedo,shadow"}).find("--aov: unknown AOV 'shadow' (known: albedo, normal"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--denoise-output", "d.png"}).find("need --denoise"), std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--denoise", "--denoise-dumps"}).find("--denoise-dumps needs --dump-every"), std::string::npos);
+    EXPECT_NE(errorOf({"merge", "a.exr", "-o", "x.png", "--aov", "albedo"}).find("vkpath merge takes"), std::string::npos);
+}
+
 // Light for scenes that bring none (render and info: it changes the variant).
 TEST(CliArgs, BackgroundAndEnvironment) {
     CliArgs a = parse({"render", "s.gltf", "--background", "0.25,0.5,1"});
