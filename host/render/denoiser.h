@@ -1,0 +1,101 @@
+// The built-in denoiser (issue 17): a compute-shader filter that turns a noisy render and its
+// feature images into a clean, BIASED estimate of the image. It never replaces the raw image,
+// which stays unbiased. Algorithm, parameters and costs: docs/design.md "Denoiser"; the kernel is
+// shaders/denoise.comp.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/image.h"
+
+namespace vkp {
+
+class VulkanDevice;
+
+/// What the denoiser reads. All images are width x height, row 0 = the top (core/image.h). The
+/// feature images describe the first non-specular hit of each pixel's samples (averaged over them).
+struct DenoiseInput {
+    const Image* color = nullptr;     ///< mean radiance per pixel (linear)
+    const Image* variance = nullptr;  ///< variance of each pixel's MEAN, per channel (sample variance / n)
+    const Image* albedo = nullptr;    ///< mean albedo (RGB, mostly in [0,1]); for a miss or a pure
+                                      ///< emitter the seen radiance clamped to [0,1]
+    const Image* normal = nullptr;    ///< mean world-space shading normal, RGB = XYZ, length <= 1;
+                                      ///< (0,0,0) where nothing was hit
+    const std::vector<float>* depth = nullptr;  ///< per pixel (row-major), distance along the camera's
+                                                ///< view axis of the first hit (scene units); +inf
+                                                ///< (or any non-finite value) where no sample hit
+};
+
+/// The filter's parameters; the defaults are SVGF's (Schied et al. 2017, sec. 4.5), measured on
+/// the synthetic scenes of tests/gpu/test_gpu_denoise.cpp (docs/design.md "Denoiser").
+struct DenoiseOptions {
+    /// A-trous levels (1..10): level i has taps 2^i pixels apart; the filter reaches
+    /// filterRadius(iterations) = 2 (2^iterations - 1) pixels.
+    std::uint32_t iterations = 5;
+    /// Luminance edge-stopping: a tap whose demodulated luminance differs from the centre's by
+    /// sigmaLuminance standard deviations (of the centre's mean, blurred 3x3) weighs 1/e. Larger
+    /// blurs more; as the variance goes to 0 every differing tap goes to weight 0.
+    float sigmaLuminance = 4.0f;
+    /// Normal edge-stopping: the weight is max(0, cos(angle between the normals))^sigmaNormal.
+    float sigmaNormal = 128.0f;
+    /// Depth edge-stopping: a tap whose depth differs from the centre's by sigmaDepth times the
+    /// change the centre's depth gradient predicts weighs 1/e (plus 0.1% of the depth, so a flat
+    /// face facing the camera never stops the filter).
+    float sigmaDepth = 1.0f;
+    /// Demodulation divides by max(albedo, albedoEpsilon) per channel and multiplies the filtered
+    /// result by the same number, so where nothing is blurred the image comes back unchanged
+    /// (to rounding), whatever the albedo. A black pixel (albedo 0) is filtered as radiance / eps
+    /// and multiplied back by eps: what it gathers from brighter neighbours is scaled down by eps.
+    float albedoEpsilon = 1e-3f;
+    /// Tests only: the most rows one band may hold (0: as many as the device's limits allow), to
+    /// force bands on a small image.
+    std::uint32_t maxBandRows = 0;
+};
+
+/// Rows of one band of a large image: the output rows [y0, y1) and the rows loaded for them,
+/// [loadY0, loadY1), a halo of the filter's radius on each side where the image has rows.
+struct DenoiseBand {
+    std::uint32_t y0 = 0, y1 = 0;
+    std::uint32_t loadY0 = 0, loadY1 = 0;
+};
+
+/// Radius in pixels of everything one output pixel depends on, for `iterations` a-trous levels:
+/// sum over levels of 2 x 2^level (the 3x3 variance blur and the depth gradient reach 1 pixel,
+/// within that).
+std::uint32_t filterRadius(std::uint32_t iterations);
+
+/// The bands of a height-row image when one band may load at most maxRows rows: one band if the
+/// image fits, else bands of maxRows - 2 halo output rows (the last shorter). Throws
+/// std::invalid_argument when maxRows <= 2 halo (no band could produce a row).
+std::vector<DenoiseBand> planDenoiseBands(std::uint32_t height, std::uint32_t maxRows, std::uint32_t halo);
+
+/// The denoiser on one device: its pipelines are built once; each run uploads the inputs, filters
+/// them on the device and reads the result back. Reusable for images of any size (its buffers grow
+/// to the largest band seen). Not thread-safe: one run at a time.
+class Denoiser {
+public:
+    explicit Denoiser(VulkanDevice& device, const DenoiseOptions& options = {});
+    ~Denoiser();
+    Denoiser(const Denoiser&) = delete;
+    Denoiser& operator=(const Denoiser&) = delete;
+
+    /// The denoised image (linear radiance, same size as the input). Throws std::invalid_argument
+    /// when an image is missing, the sizes differ, or options are out of range; DeviceError when
+    /// the image is too wide for the device (one band of 2 x filterRadius + 1 rows does not fit
+    /// its limits); VulkanError on a device failure or a validation message.
+    Image run(const DenoiseInput& input);
+
+    const DenoiseOptions& options() const { return options_; }
+    /// Bands of the last run (1 when the image fitted one pass).
+    std::size_t lastBandCount() const { return lastBands_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    VulkanDevice* dev_;
+    DenoiseOptions options_;
+    std::size_t lastBands_ = 0;
+};
+
+}  // namespace vkp

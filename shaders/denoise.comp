@@ -1,0 +1,148 @@
+#version 460
+// The denoiser's kernel (host/render/denoiser.cpp): edge-avoiding a-trous wavelets guided by the
+// per-pixel variance, on demodulated radiance; the spatial filter of SVGF (Schied et al. 2017,
+// "Spatiotemporal Variance-Guided Filtering: Real-Time Reconstruction for Path-Traced Global
+// Illumination", sec. 4.4-4.5) built on the a-trous transform of Dammertz et al. 2010
+// ("Edge-Avoiding A-Trous Wavelet Transform for fast Global Illumination Filtering").
+//
+// Two passes, chosen by the specialization constant PASS (so neither carries the other's code:
+// on lavapipe a branch never skips, design.md "Every reachable branch runs"):
+//  PASS 0, demodulate: out = (color / a, var_L) with a = max(albedo, eps) per channel and var_L the
+//          variance of the demodulated luminance (channels taken as fully correlated: the standard
+//          deviations add), from the variance of the pixel's mean.
+//  PASS 1, one a-trous level of step 2^level: a 5x5 B3-spline kernel with holes, each tap weighted
+//          by the edge-stopping functions of SVGF eq. 2-5 on normal, depth and luminance (the
+//          latter in units of sigmaL x the 3x3-blurred standard deviation of the centre); the
+//          variance is carried along, var' = sum w^2 var / (sum w)^2 (SVGF eq. 3). With
+//          push.remodulate the output is multiplied back by a (the last level).
+//
+// Data: every buffer holds one vec4 per pixel of the band, row-major, `push.width` wide and
+// `push.rows` rows (row 0 = the band's top). Bindings:
+//  0 color     (rgb, -)                     uniform texel buffer RGBA32F
+//  1 variance  (rgb: variance of the mean)  uniform texel buffer RGBA32F
+//  2 albedo    (rgb, -)                     uniform texel buffer RGBA32F
+//  3 guide     (unit normal or 0, depth)    uniform texel buffer RGBA32F; depth < 0: nothing hit
+//  4 illumIn   (demodulated rgb, var_L)     uniform texel buffer RGBA32F (PASS 1)
+//  5 illumOut  same layout                  storage buffer
+// Taps outside the band are skipped and the weights renormalised, so a band's rows farther than
+// the filter's radius from its ends are the same bits as those of a single pass.
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const uint PASS = 0u;
+
+layout(set = 0, binding = 0) uniform samplerBuffer uColor;
+layout(set = 0, binding = 1) uniform samplerBuffer uVariance;
+layout(set = 0, binding = 2) uniform samplerBuffer uAlbedo;
+layout(set = 0, binding = 3) uniform samplerBuffer uGuide;
+layout(set = 0, binding = 4) uniform samplerBuffer uIllumIn;
+layout(std430, set = 0, binding = 5) writeonly buffer IllumOut { vec4 illumOut[]; };
+
+layout(push_constant) uniform Push {
+    uint width;       // pixels per row
+    uint rows;        // rows of the band
+    uint step;        // PASS 1: distance between taps, 2^level pixels
+    uint remodulate;  // PASS 1: 1 = multiply by the albedo (the last level)
+    float sigmaL;     // luminance: standard deviations of the centre that give weight 1/e
+    float sigmaN;     // normal: exponent of the cosine
+    float sigmaZ;     // depth: multiples of the depth change the gradient predicts that give 1/e
+    float albedoEps;  // the albedo's floor for demodulation
+} push;
+
+const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);  // Rec. 709 luminance
+
+vec3 demodAlbedo(int i) { return max(texelFetch(uAlbedo, i).rgb, vec3(push.albedoEps)); }
+
+/// Depth change per pixel along x and y at (x, y): of the two one-sided differences the smaller
+/// (so a neighbour across a depth edge does not make the gradient steep); 0 beside misses.
+vec2 depthGradient(int x, int y, float z) {
+    vec2 g = vec2(0.0);
+    for (int axis = 0; axis < 2; ++axis) {
+        float best = 0.0;
+        bool found = false;
+        for (int s = -1; s <= 1; s += 2) {
+            int qx = axis == 0 ? x + s : x, qy = axis == 1 ? y + s : y;
+            if (qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) continue;
+            float zq = texelFetch(uGuide, qy * int(push.width) + qx).w;
+            if (zq < 0.0) continue;
+            float d = (zq - z) * float(s);
+            if (!found || abs(d) < abs(best)) best = d;
+            found = true;
+        }
+        g[axis] = best;
+    }
+    return g;
+}
+
+void demodulate(int i) {
+    vec3 a = demodAlbedo(i);
+    vec3 sd = sqrt(max(texelFetch(uVariance, i).rgb, vec3(0.0))) / a;
+    float sdL = dot(kLuma, sd);
+    illumOut[i] = vec4(texelFetch(uColor, i).rgb / a, sdL * sdL);
+}
+
+void atrousLevel(int x, int y, int i) {
+    const int w = int(push.width), h = int(push.rows);
+    // The centre's luminance scale: sigmaL x the standard deviation, its variance blurred 3x3
+    // (SVGF eq. 5: a single pixel's variance estimate is itself noisy).
+    float varBlur = 0.0, wBlur = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            float k = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
+            varBlur += k * texelFetch(uIllumIn, qy * w + qx).w;
+            wBlur += k;
+        }
+    // A tiny floor keeps 0/0 out where the variance is 0: equal luminances weigh 1, others 0.
+    float lumScale = 1.0 / (push.sigmaL * sqrt(max(varBlur / wBlur, 0.0)) + 1e-20);
+
+    vec4 centre = texelFetch(uIllumIn, i);
+    vec4 g = texelFetch(uGuide, i);
+    bool hit = g.w >= 0.0;
+    bool hasNormal = dot(g.xyz, g.xyz) > 0.0;
+    vec2 grad = hit ? depthGradient(x, y, g.w) : vec2(0.0);
+    float lumP = dot(kLuma, centre.rgb);
+    float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
+
+    const float kB3[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+    vec3 sum = vec3(0.0);
+    float sumVar = 0.0, sumW = 0.0;
+    const int s = int(push.step);
+    for (int ty = -2; ty <= 2; ++ty)
+        for (int tx = -2; tx <= 2; ++tx) {
+            int qx = x + tx * s, qy = y + ty * s;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            int j = qy * w + qx;
+            vec4 q = texelFetch(uIllumIn, j);
+            vec4 gq = texelFetch(uGuide, j);
+            // Log of the edge-stopping weight (SVGF eq. 2-4), one exp2 per tap.
+            float logW = -abs(lumP - dot(kLuma, q.rgb)) * lumScale;
+            if (hit != (gq.w >= 0.0)) {
+                logW = -1e30;  // a hit and a miss never mix
+            } else if (hit) {
+                float expected = abs(dot(grad, vec2(float(tx * s), float(ty * s))));
+                logW -= abs(g.w - gq.w) / (push.sigmaZ * expected + zEps);
+                bool qHasNormal = dot(gq.xyz, gq.xyz) > 0.0;
+                // Two hits without a normal (a mean normal of 0) are alike; one without is not.
+                if (hasNormal || qHasNormal) logW += push.sigmaN * log(max(dot(g.xyz, gq.xyz), 1e-30));
+            }
+            float wq = kB3[tx + 2] * kB3[ty + 2] * exp(logW);
+            sum += wq * q.rgb;
+            sumVar += wq * wq * q.w;
+            sumW += wq;
+        }
+    // sumW > 0: the centre's own weight is kB3[2]^2 (every factor 1 for itself).
+    vec3 rgb = sum / sumW;
+    float var = sumVar / (sumW * sumW);
+    if (push.remodulate != 0u) rgb *= demodAlbedo(i);
+    illumOut[i] = vec4(rgb, var);
+}
+
+void main() {
+    int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+    if (x >= int(push.width) || y >= int(push.rows)) return;
+    int i = y * int(push.width) + x;
+    if (PASS == 0u) demodulate(i);
+    else atrousLevel(x, y, i);
+}
