@@ -61,6 +61,8 @@ struct PathState {
     vec3 aovNormal;      // shading normal there, 0 until then
     bool aovDone;        // the albedo and normal are set
     vec4 aovPos;         // xyz: the camera ray's hit point (camera-relative), w: 1 if it hit, else all 0
+    vec3 aovEmit;        // the radiance gathered when the first non-specular vertex was reached
+    bool aovEmitSet;     // ... which it was (else the path's whole radiance is emission seen directly)
 };
 
 /// Start sample `sampleIndex` of pixel `pix`: the camera ray of the book's camera with a box filter
@@ -98,6 +100,8 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     s.aovNormal = vec3(0.0f);
     s.aovDone = false;
     s.aovPos = vec4(0.0f);
+    s.aovEmit = vec3(0.0f);
+    s.aovEmitSet = false;
     return s;
 }
 
@@ -108,6 +112,8 @@ void aovVertex(inout PathState s, Bsdf b) {
     s.aovAlbedo = s.aovTint * aovAlbedo(b);
     s.aovNormal = aovNormal(b);
     s.aovDone = true;
+    s.aovEmit = s.radiance;  // what the camera saw directly, or through mirrors and glass
+    s.aovEmitSet = true;
 }
 
 /// HAS_AOV: the path ends, before any non-specular vertex, at radiance L (the background, a light)
@@ -246,11 +252,12 @@ void main() {
     }
     uint at = 2u * (pixel - base);  // the pixel's pair of vec4 in the band's buffers
     uint aovAt = AOV_VEC4_PER_PIXEL * (pixel - base);
-    vec4 aov0 = vec4(0.0f), aov1 = vec4(0.0f), aov2 = vec4(0.0f);
+    vec4 aov0 = vec4(0.0f), aov1 = vec4(0.0f), aov2 = vec4(0.0f), aov3 = vec4(0.0f);
     if (HAS_AOV) {
         aov0 = aovSums[aovAt];
         aov1 = aovSums[aovAt + 1u];
         aov2 = aovSums[aovAt + 2u];
+        aov3 = aovSums[aovAt + 3u];
     }
 
     vec4 sum = accumSum[at];
@@ -295,6 +302,10 @@ void main() {
                 aov0.w += 1.0f;
                 aov0.xyz += (s.aovAlbedo - aov0.xyz) / aov0.w;
                 aov1.xyz += (s.aovNormal - aov1.xyz) / aov0.w;
+                // A dropped sample (not finite) adds no emission: it is not in the image either.
+                vec3 emit = s.aovEmitSet ? s.aovEmit : s.radiance;
+                if (any(isnan(emit)) || any(greaterThan(abs(emit), vec3(MAX_SAMPLE_RADIANCE)))) emit = vec3(0.0f);
+                aov3.xyz += (emit - aov3.xyz) / aov0.w;
                 if (s.aovPos.w > 0.0f) {
                     aov1.w += 1.0f;
                     aov2.xyz += (s.aovPos.xyz - aov2.xyz) / aov1.w;
@@ -312,6 +323,7 @@ void main() {
         aovSums[aovAt] = aov0;
         aovSums[aovAt + 1u] = aov1;
         aovSums[aovAt + 2u] = aov2;
+        aovSums[aovAt + 3u] = aov3;
     }
     if (adaptive) {
         decisionSums[at] = dSum;

@@ -95,7 +95,7 @@ render options:
   --dump-every N          write the image every N spp into --dump-dir (default ./frames)
   --dump-dir DIR          folder of progressive frames: frame-<spp>.png
   --dump-format F         also dump exr or pfm (repeatable)
-  --aov LIST              feature images: any of albedo,normal,depth,position,variance,spp (or all),
+  --aov LIST              feature images: any of albedo,normal,depth,position,emission,variance,spp (or all),
                           as layers of EXR outputs (albedo.R, normal.X, ...; also in EXR dumps), else
                           as files OUT.<aov>.<ext> (.pfm beside a PNG); docs/design.md "Feature images"
   --denoise               also write a denoised image (biased; the raw image is kept): OUT.denoised.<ext>

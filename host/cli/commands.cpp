@@ -17,6 +17,7 @@
 #include "core/interrupt.h"
 #include "cli/multi_device.h"
 #include "render/accum_file.h"
+#include "cli/denoise_hook.h"
 #include "render/render_key.h"
 #include "render/error_metrics.h"
 #include "render/features.h"
@@ -193,6 +194,12 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);
     const double secondsSetup = since(t);
+    // --denoise: the denoiser's pipelines once, used at the end (and at dumps or log rows).
+    std::unique_ptr<Denoiser> denoiser;
+    if (a.denoise) {
+        denoiser = std::make_unique<Denoiser>(device);
+        job.session.denoiser = denoiseHook(*denoiser);
+    }
     t = Clock::now();
     Renderer renderer(device, arrays, job.options);  // refuses a render that does not fit the device
     if (resume) renderer.restore(resume->state, a.resume.string());
@@ -212,7 +219,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         if (!a.errorLog.empty()) log = std::make_unique<ErrorLog>(a.errorLog, denoisedLog);
         job.session.denoiseCheckpoints = denoisedLog && log;
         job.session.checkpointPowersOfTwo = true;
-        job.session.onCheckpoint = [&](const Checkpoint& c) {
+        job.session.onCheckpoint = [&, denoisedLog](const Checkpoint& c) {
             lastError = computeErrorMetrics(c.image, *reference);
             if (c.denoised) lastDenoisedError = computeErrorMetrics(*c.denoised, *reference);
             if (log && denoisedLog) log->append(c.spp, c.seconds, lastError, lastDenoisedError, c.denoiseSeconds);
@@ -246,6 +253,13 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         std::fprintf(stderr, "vkpath: error against %s: rmse %.6g, relMSE %.6g\n", a.reference.string().c_str(),
                      lastError.rmse, lastError.relmse);
     for (const auto& o : job.session.outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
+    if (job.session.denoiser) {
+        std::vector<std::filesystem::path> denoised;
+        if (!job.session.denoiseOutput.empty()) denoised.push_back(job.session.denoiseOutput);
+        else for (const auto& o : job.session.outputs) denoised.push_back(denoisedPath(o));
+        for (const auto& d : denoised)
+            std::fprintf(stderr, "vkpath: wrote %s (denoised in %.3f s: biased, the raw image is not)\n", d.string().c_str(), r.denoiseSeconds);
+    }
     if (!job.session.partial.empty()) std::fprintf(stderr, "vkpath: wrote %s\n", job.session.partial.string().c_str());
     if (!job.session.checkpoint.empty())
         std::fprintf(stderr, "vkpath: wrote %s (checkpoint at sample %u)\n", job.session.checkpoint.string().c_str(), r.spp);

@@ -11,6 +11,7 @@
 #include "core/interrupt.h"
 #include "render/accum_file.h"
 #include "render/aov.h"
+#include "cli/denoise_hook.h"
 #include "render/merge.h"
 #include "render/renderer.h"
 #include "vk/device.h"
@@ -38,7 +39,7 @@ std::vector<std::string> deviceSelectors(const std::string& option) {
 
 int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, std::uint32_t first,
                     const std::vector<std::string>& selectors, Clock::time_point processStart) {
-    const SessionOptions& o = job.session;
+    SessionOptions& o = job.session;
     const char* oneDevice = job.options.adaptive() ? "--adaptive"
                             : !o.checkpoint.empty() ? "--checkpoint"
                             : !a.resume.empty()     ? "--resume"
@@ -63,6 +64,12 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     for (const std::string& n : names) {
         devices.push_back(std::make_unique<VulkanDevice>(instance, n));
         renderers.push_back(std::make_unique<Renderer>(*devices.back(), arrays, job.options));
+    }
+    // --denoise: on the first device, once the samples are merged.
+    std::unique_ptr<Denoiser> denoiser;
+    if (a.denoise) {
+        denoiser = std::make_unique<Denoiser>(*devices.front());
+        o.denoiser = denoiseHook(*denoiser);
     }
     const std::uint32_t end = o.spp;
     if (!o.quiet) {

@@ -53,6 +53,7 @@ std::vector<ChannelMap> channelMaps(bool adaptive, bool aov) {
             m.push_back({std::string("aov_albedo.") + rgb[c], &RenderState::aov, c, kAovFloatsPerPixel});
             m.push_back({std::string("aov_normal.") + xyz[c], &RenderState::aov, 4 + c, kAovFloatsPerPixel});
             m.push_back({std::string("aov_position.") + xyz[c], &RenderState::aov, 8 + c, kAovFloatsPerPixel});
+            m.push_back({std::string("aov_emission.") + rgb[c], &RenderState::aov, 12 + c, kAovFloatsPerPixel});
         }
         m.push_back({"aov_samples", &RenderState::aov, 3, kAovFloatsPerPixel});
         m.push_back({"aov_hits", &RenderState::aov, 7, kAovFloatsPerPixel});

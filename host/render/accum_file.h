@@ -10,7 +10,7 @@
 //   adaptive sampling only: active (1 = still receiving samples), decision.R .G .B .count and
 //   decision_sq.R .G .B (the decision stream's sums, render/adaptive.h)
 //   feature images only (`--aov`): aov_albedo.R .G .B, aov_samples, aov_normal.X .Y .Z, aov_hits,
-//   aov_position.X .Y .Z (shared/aov.h's sums)
+//   aov_position.X .Y .Z, aov_emission.R .G .B (shared/aov.h's running means and counts)
 // String attributes: vkpath.format ("accumulation 1"), vkpath.samples ("A:B": sample indices
 // [A, B) of every pixel are in the sums), vkpath.samplesTaken, vkpath.rays, vkpath.nonfinite,
 // vkpath.loopGuard, and vkpath.key.<name> for every entry of the key (spaces in names as '_').

@@ -13,13 +13,14 @@ const char* aovName(Aov a) {
         case Aov::Normal: return "normal";
         case Aov::Depth: return "depth";
         case Aov::Position: return "position";
+        case Aov::Emission: return "emission";
         case Aov::Variance: return "variance";
         case Aov::Spp: return "spp";
     }
     return "?";
 }
 
-bool aovNeedsKernel(Aov a) { return a == Aov::Albedo || a == Aov::Normal || a == Aov::Depth || a == Aov::Position; }
+bool aovNeedsKernel(Aov a) { return a != Aov::Variance && a != Aov::Spp; }
 
 std::string parseAovList(const std::string& list, std::vector<Aov>& out) {
     std::vector<bool> want(std::size(kAllAovs), false);
@@ -54,6 +55,7 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
     f.albedo = Image(width, height);
     f.normal = Image(width, height);
     f.position = Image(width, height);
+    f.emission = Image(width, height);
     f.depth.assign(n, std::numeric_limits<float>::infinity());
     f.hitFraction.assign(n, 0.0f);
     const glm::dvec3 axis(frame.viewAxis), eye(frame.eye);
@@ -64,6 +66,7 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
             for (int c = 0; c < 3; ++c) {
                 f.albedo.rgb[3 * i + c] = s[c];
                 f.normal.rgb[3 * i + c] = s[4 + c];
+                f.emission.rgb[3 * i + c] = s[12 + c];
             }
             f.hitFraction[i] = float(hits / samples);
         }
@@ -95,6 +98,10 @@ std::vector<ImageLayer> aovLayers(const std::vector<Aov>& which, const FeatureIm
             case Aov::Position:
                 l.channels = {"X", "Y", "Z"};
                 l.values = features->position;
+                break;
+            case Aov::Emission:
+                l.channels = {"R", "G", "B"};
+                l.values = features->emission;
                 break;
             case Aov::Depth:
                 l.channels = {"Z"};

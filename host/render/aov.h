@@ -15,12 +15,12 @@
 
 namespace vkp {
 
-enum class Aov : std::uint32_t { Albedo, Normal, Depth, Position, Variance, Spp };
+enum class Aov : std::uint32_t { Albedo, Normal, Depth, Position, Emission, Variance, Spp };
 /// Every AOV, in the order of their layers.
-inline constexpr Aov kAllAovs[] = {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Position, Aov::Variance, Aov::Spp};
-/// "albedo", "normal", "depth", "position", "variance", "spp": the layer's name.
+inline constexpr Aov kAllAovs[] = {Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Position, Aov::Emission, Aov::Variance, Aov::Spp};
+/// "albedo", "normal", "depth", "position", "emission", "variance", "spp": the layer's name.
 const char* aovName(Aov a);
-/// True for the AOVs the kernel gathers (albedo, normal, depth, position); variance and spp come
+/// True for the AOVs the kernel gathers (albedo, normal, depth, position, emission); variance and spp come
 /// from the accumulation sums.
 bool aovNeedsKernel(Aov a);
 /// Parses a comma-separated list of AOV names ("albedo,normal"; "all" for every one) into `out`
@@ -42,6 +42,7 @@ struct FeatureImages {
     Image position;  ///< mean first-hit position over the samples that hit (world units); 0 where none hit
     std::vector<float> depth;  ///< that position's distance along the view axis (world units); +inf where none hit
     std::vector<float> hitFraction;  ///< fraction of the pixel's samples whose camera ray hit something
+    Image emission;  ///< mean radiance seen before the first non-specular vertex (shared/aov.h)
 };
 
 /// The feature images from the AOV sums (Renderer::readAovSums, RenderState::aov; kAovFloatsPerPixel
@@ -52,7 +53,7 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
 /// The layers of `which` for an image's outputs: from `features` (albedo, normal, depth, position;
 /// may be null when none of those is asked for) and `sums` (variance: of each pixel's mean, per
 /// channel; spp: the samples in each pixel's mean). Channel names: albedo R,G,B; normal X,Y,Z;
-/// depth Z; position X,Y,Z; variance R,G,B; spp V.
+/// depth Z; position X,Y,Z; emission R,G,B; variance R,G,B; spp V.
 std::vector<ImageLayer> aovLayers(const std::vector<Aov>& which, const FeatureImages* features, const PixelSums& sums);
 
 }  // namespace vkp

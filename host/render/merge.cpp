@@ -59,6 +59,7 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
                     aov[p + c] += samples * a[c];
                     aov[p + 4 + c] += samples * a[4 + c];
                     aov[p + 8 + c] += hits * a[8 + c];
+                    aov[p + 12 + c] += samples * a[12 + c];
                 }
                 aov[p + 3] += samples;
                 aov[p + 7] += hits;
@@ -71,6 +72,7 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
                 m.aov[p + c] = samples > 0.0 ? float(aov[p + c] / samples) : 0.0f;
                 m.aov[p + 4 + c] = samples > 0.0 ? float(aov[p + 4 + c] / samples) : 0.0f;
                 m.aov[p + 8 + c] = hits > 0.0 ? float(aov[p + 8 + c] / hits) : 0.0f;
+                m.aov[p + 12 + c] = samples > 0.0 ? float(aov[p + 12 + c] / samples) : 0.0f;
             }
             m.aov[p + 3] = float(samples);
             m.aov[p + 7] = float(hits);

@@ -15,6 +15,11 @@
 //            Averaged over all samples (so its length is below 1 where samples disagree).
 //   position the first surface the camera ray hits (media ignored), in world units; averaged over
 //            the samples that hit something ("hits"; the pixel has no position when none did).
+//   emission the radiance a sample gathered before its first non-specular vertex (its whole
+//            radiance when it has none): lights and the background seen directly or through
+//            mirrors and glass. It has no noise but the pixel filter's, so the denoiser leaves it
+//            out of what it filters and adds it back. Averaged over all samples (a sample the
+//            image drops as not finite adds 0).
 // depth is the position's distance along the camera's view axis, computed by the host from the
 // mean position (it is linear in it); variance and spp come from the accumulation sums.
 #ifndef VKP_AOV_H
@@ -26,11 +31,12 @@
 VKP_BEGIN
 
 /// vec4s per pixel in the AOV buffer: [k*i] = (mean albedo RGB, samples), [k*i+1] = (mean normal
-/// XYZ, hits), [k*i+2] = (mean position XYZ over the hits, in camera-relative world units, 0).
+/// XYZ, hits), [k*i+2] = (mean position XYZ over the hits, in camera-relative world units, 0),
+/// [k*i+3] = (mean emission RGB, 0).
 /// Running means, mean += (x - mean) / n after each sample (Welford 1962): a constant stays exact,
 /// and rounding grows like sqrt(n) ulps where a float sum's grows like n ulps (2e-6 relative
 /// after 256 samples of 0.9, which a sum gets; the mean gets 0).
-const uint AOV_VEC4_PER_PIXEL = 3u;
+const uint AOV_VEC4_PER_PIXEL = 4u;
 
 /// A metal whose fuzz is at most this is a mirror for the AOVs: the path is followed through it.
 const float AOV_MIRROR_FUZZ = 0.0f;

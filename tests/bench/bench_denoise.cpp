@@ -36,7 +36,7 @@ TEST(BenchDenoise, TimeAt256And512) {
         std::sort(t.begin(), t.end());
         std::printf("  %ux%u: first run %.3f s, median of 7 %.3f s (min %.3f, max %.3f)\n", size, size, first, t[3], t[0],
                     t[6]);
-        if (size == 256u) EXPECT_LT(t[3], 0.15);
+        // A measurement, not an assertion (speed is never a pass/fail test): docs/performance.md.
     }
 }
 

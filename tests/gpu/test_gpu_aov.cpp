@@ -4,7 +4,8 @@
 //     nearest texel has exactly that albedo, and every other pixel one between the values its
 //     footprint sees; a noise quad's albedo is the mean of the noise over the footprint. Their
 //     normal is +z exactly, their depth the plane's distance 8.1, their position on the plane;
-//     the sky's pixels have albedo 1 (the background, clamped), normal 0 and no depth.
+//     the sky's pixels have albedo 1 (the background, clamped), normal 0, no depth, and the
+//     background as their emission (the quads' is 0).
 //  2. A sphere: each pixel's normal and position are the means over its footprint of the unit
 //     normal and the hit point (a 16 x 16 grid of exact ray-sphere hits on the host).
 //  3. A mirror tints and passes on: through a fuzz-0 metal the albedo is its colour times the wall's
@@ -124,6 +125,7 @@ TEST(GpuAov, TexturedQuadsShowTheirTextureNormalAndDepth) {
                 for (int c = 0; c < 3; ++c) {
                     EXPECT_EQ(f.albedo.rgb[at + c], 1.0f) << px << "," << py;
                     EXPECT_EQ(f.normal.rgb[at + c], 0.0f) << px << "," << py;
+                    EXPECT_EQ(f.emission.rgb[at + c], 1.5f) << px << "," << py;  // the sky seen directly
                 }
                 EXPECT_TRUE(std::isinf(f.depth[i])) << px << "," << py;
                 EXPECT_EQ(f.hitFraction[i], 0.0f);
@@ -141,6 +143,7 @@ TEST(GpuAov, TexturedQuadsShowTheirTextureNormalAndDepth) {
             EXPECT_NEAR(f.position.rgb[at], centre.x, 0.04) << px << "," << py;  // a pixel is ~0.12 wide: the mean is near its centre
             EXPECT_NEAR(f.position.rgb[at + 1], centre.y, 0.04) << px << "," << py;
             EXPECT_EQ(f.hitFraction[i], 1.0f);
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(f.emission.rgb[at + c], 0.0f);  // the quads do not emit
             if (quad < 2) {
                 if (lo == hi) {  // one cell or texel: exactly its value
                     for (int c = 0; c < 3; ++c) EXPECT_NEAR(f.albedo.rgb[at + c], lo[c], 1e-6 * (1.0 + lo[c])) << px << "," << py;

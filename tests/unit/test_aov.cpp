@@ -33,7 +33,7 @@ TEST(AovList, ParsesNamesAllAndRefusesUnknownOnes) {
     EXPECT_FALSE(aovNeedsKernel(v[0]) || aovNeedsKernel(v[1]));
     const std::string e = parseAovList("albedo,colour", v);
     EXPECT_NE(e.find("unknown AOV 'colour'"), std::string::npos) << e;
-    EXPECT_NE(e.find("albedo, normal, depth, position, variance, spp"), std::string::npos) << e;
+    EXPECT_NE(e.find("albedo, normal, depth, position, emission, variance, spp"), std::string::npos) << e;
     EXPECT_NE(parseAovList("", v), "");
     EXPECT_NE(parseAovList("albedo,", v), "");
 }
@@ -81,6 +81,7 @@ TEST(AovImages, MeansDepthAndWorldPositionsFromTheSums) {
 TEST(AovImages, LayersNameTheirChannelsAndTakeVarianceAndSppFromTheSums) {
     std::vector<float> sums(2 * kAovFloatsPerPixel, 0.0f);
     putPixel(sums, 0, {0.5f, 0.5f, 0.5f}, 2.0f, {0.0f, 1.0f, 0.0f}, 2.0f, {0.0f, 0.0f, -2.0f});
+    sums[12] = 0.75f;  // emission.R
     putPixel(sums, 1, {0.5f, 0.5f, 0.5f}, 1.0f, {1.0f, 0.0f, 0.0f}, 1.0f, {0.0f, 0.0f, -3.0f});
     const FeatureImages f = featureImages(sums, 2, 1, AovFrame{});
     PixelSums s;
@@ -89,7 +90,7 @@ TEST(AovImages, LayersNameTheirChannelsAndTakeVarianceAndSppFromTheSums) {
     s.sum = {2.0, 4.0, 6.0, 2.0, 1.0, 1.0, 1.0, 1.0};  // pixel 0: samples 1,1,1 and 1,3,5; pixel 1: one sample
     s.sumSq = {2.0, 10.0, 26.0, 0.0, 1.0, 1.0, 1.0, 0.0};
     const std::vector<ImageLayer> layers = aovLayers(std::vector<Aov>(std::begin(kAllAovs), std::end(kAllAovs)), &f, s);
-    ASSERT_EQ(layers.size(), 6u);
+    ASSERT_EQ(layers.size(), 7u);
     EXPECT_EQ(layers[0].name, "albedo");
     EXPECT_EQ(layers[1].channels, (std::vector<std::string>{"X", "Y", "Z"}));
     EXPECT_EQ(layers[2].name, "depth");
@@ -97,15 +98,17 @@ TEST(AovImages, LayersNameTheirChannelsAndTakeVarianceAndSppFromTheSums) {
     EXPECT_FLOAT_EQ(layers[2].values.rgb[0], 2.0f);  // (0, 0, -2) from the eye at 0 along -z
     EXPECT_FLOAT_EQ(layers[2].values.rgb[3], 3.0f);
     EXPECT_EQ(layers[3].name, "position");
-    EXPECT_EQ(layers[4].name, "variance");
-    EXPECT_FLOAT_EQ(layers[4].values.rgb[0], 0.0f);  // equal samples
-    EXPECT_FLOAT_EQ(layers[4].values.rgb[1], 1.0f);  // samples 1 and 3: variance 2, of the mean 1
-    EXPECT_FLOAT_EQ(layers[4].values.rgb[2], 4.0f);
-    EXPECT_FLOAT_EQ(layers[4].values.rgb[3], 0.0f);  // one sample: no estimate, 0
-    EXPECT_EQ(layers[5].name, "spp");
-    EXPECT_EQ(layers[5].channels, (std::vector<std::string>{"V"}));
-    EXPECT_FLOAT_EQ(layers[5].values.rgb[0], 2.0f);
-    EXPECT_FLOAT_EQ(layers[5].values.rgb[3], 1.0f);
+    EXPECT_EQ(layers[4].name, "emission");
+    EXPECT_FLOAT_EQ(layers[4].values.rgb[0], 0.75f);
+    EXPECT_EQ(layers[5].name, "variance");
+    EXPECT_FLOAT_EQ(layers[5].values.rgb[0], 0.0f);  // equal samples
+    EXPECT_FLOAT_EQ(layers[5].values.rgb[1], 1.0f);  // samples 1 and 3: variance 2, of the mean 1
+    EXPECT_FLOAT_EQ(layers[5].values.rgb[2], 4.0f);
+    EXPECT_FLOAT_EQ(layers[5].values.rgb[3], 0.0f);  // one sample: no estimate, 0
+    EXPECT_EQ(layers[6].name, "spp");
+    EXPECT_EQ(layers[6].channels, (std::vector<std::string>{"V"}));
+    EXPECT_FLOAT_EQ(layers[6].values.rgb[0], 2.0f);
+    EXPECT_FLOAT_EQ(layers[6].values.rgb[3], 1.0f);
     // Variance and spp need no kernel images; albedo does.
     EXPECT_EQ(aovLayers({Aov::Variance, Aov::Spp}, nullptr, s).size(), 2u);
     EXPECT_THROW(aovLayers({Aov::Albedo}, nullptr, s), std::invalid_argument);
@@ -187,7 +190,7 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
     a.sum.assign(6 * kStateFloatsPerPixel, 1.0f);
     a.sumSq.assign(6 * kStateFloatsPerPixel, 2.0f);
     a.aov.resize(6 * kAovFloatsPerPixel);
-    for (std::size_t i = 0; i < a.aov.size(); ++i) a.aov[i] = i % 12 == 11 ? 0.0f : 0.125f * float(i) + 1.0f / 3.0f;  // 11: unused, 0
+    for (std::size_t i = 0; i < a.aov.size(); ++i) a.aov[i] = i % 4 == 3 && i % 16 > 7 ? 0.0f : 0.125f * float(i) + 1.0f / 3.0f;  // 11, 15: unused, 0
     RenderKey key;
     key.entries = {{"aov", "on"}};
     const fs::path file = test::scratchDir("aov_files") / "part.exr";
@@ -203,8 +206,8 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
         a.aov[p + 7] = 1.0f;
         b.aov[p + 3] = 1.0f;
         b.aov[p + 7] = 1.0f;
-        for (int c = 0; c < 11; ++c)
-            if (c != 3 && c != 7) b.aov[p + std::size_t(c)] = a.aov[p + std::size_t(c)] + 4.0f;
+        for (int c = 0; c < 15; ++c)
+            if (c % 4 != 3) b.aov[p + std::size_t(c)] = a.aov[p + std::size_t(c)] + 4.0f;
     }
     const RenderState m = addStates({&a, &b}, 0, 8);
     ASSERT_EQ(m.aov.size(), a.aov.size());
@@ -213,6 +216,7 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
             EXPECT_FLOAT_EQ(m.aov[p + c], a.aov[p + c] + 1.0f);            // (3 a + (a + 4)) / 4
             EXPECT_FLOAT_EQ(m.aov[p + 4 + c], a.aov[p + 4 + c] + 1.0f);
             EXPECT_FLOAT_EQ(m.aov[p + 8 + c], a.aov[p + 8 + c] + 2.0f);    // over the hits: (a + (a + 4)) / 2
+            EXPECT_FLOAT_EQ(m.aov[p + 12 + c], a.aov[p + 12 + c] + 1.0f);
         }
         EXPECT_EQ(m.aov[p + 3], 4.0f);
         EXPECT_EQ(m.aov[p + 7], 2.0f);
