@@ -288,7 +288,8 @@ void main() {
             vec3 L = s.radiance;
             // NaN, Inf, or so large that a sum of such samples (or of their squares) could overflow:
             // dropped and counted (Inf is above the bound too).
-            if (any(isnan(L)) || any(greaterThan(abs(L), vec3(MAX_SAMPLE_RADIANCE)))) {
+            bool dropped = any(isnan(L)) || any(greaterThan(abs(L), vec3(MAX_SAMPLE_RADIANCE)));
+            if (dropped) {
                 nonfinite++;
             } else if (adaptive && ((push.batch.x + k) & 3u) == 3u) {
                 dSum += vec4(L, 1.0f);  // decision stream: steers adaptive sampling, not in the image
@@ -302,9 +303,8 @@ void main() {
                 aov0.w += 1.0f;
                 aov0.xyz += (s.aovAlbedo - aov0.xyz) / aov0.w;
                 aov1.xyz += (s.aovNormal - aov1.xyz) / aov0.w;
-                // A dropped sample (not finite) adds no emission: it is not in the image either.
-                vec3 emit = s.aovEmitSet ? s.aovEmit : s.radiance;
-                if (any(isnan(emit)) || any(greaterThan(abs(emit), vec3(MAX_SAMPLE_RADIANCE)))) emit = vec3(0.0f);
+                // A dropped sample adds no emission: it is not in the image either.
+                vec3 emit = dropped ? vec3(0.0f) : (s.aovEmitSet ? s.aovEmit : L);
                 aov3.xyz += (emit - aov3.xyz) / aov0.w;
                 if (s.aovPos.w > 0.0f) {
                     aov1.w += 1.0f;

@@ -254,10 +254,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
                      lastError.rmse, lastError.relmse);
     for (const auto& o : job.session.outputs) std::fprintf(stderr, "vkpath: wrote %s\n", o.string().c_str());
     if (job.session.denoiser) {
-        std::vector<std::filesystem::path> denoised;
-        if (!job.session.denoiseOutput.empty()) denoised.push_back(job.session.denoiseOutput);
-        else for (const auto& o : job.session.outputs) denoised.push_back(denoisedPath(o));
-        for (const auto& d : denoised)
+        for (const auto& d : denoisedOutputs(job.session))
             std::fprintf(stderr, "vkpath: wrote %s (denoised in %.3f s: biased, the raw image is not)\n", d.string().c_str(), r.denoiseSeconds);
     }
     if (!job.session.partial.empty()) std::fprintf(stderr, "vkpath: wrote %s\n", job.session.partial.string().c_str());

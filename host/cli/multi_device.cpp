@@ -139,19 +139,10 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
         if (!total.aov.empty()) features = std::make_unique<FeatureImages>(featureImages(total.aov, total.width, total.height, o.aovFrame));
         wo.layers = aovLayers(o.aovs, features.get(), sums);
         std::unique_ptr<Image> denoised;
-        WriteOptions dwo = wo;
-        dwo.layers.clear();
-        dwo.metadata.emplace_back("vkpath.denoised", "yes: biased (the raw image is not)");
         if (o.denoiser && features) {
             const Image variance = sums.varianceOfMean();
             denoised = std::make_unique<Image>(o.denoiser(DenoiseRequest{image, variance, *features}));
-            std::vector<std::filesystem::path> paths;
-            if (!o.denoiseOutput.empty()) paths.push_back(o.denoiseOutput);
-            else for (const std::filesystem::path& p : o.outputs) paths.push_back(denoisedPath(p));
-            for (const std::filesystem::path& p : paths)
-                more.push_back({p, [&denoised, &dwo, p](std::ostream& out) {
-                                    encodeImage(*denoised, imageFormatFromPath(p), dwo, out, p.string());
-                                }});
+            addDenoisedWrites(*denoised, o, wo, more);
         }
         writeImages(image, o.outputs, wo, std::move(more));
     }

@@ -119,6 +119,22 @@ std::filesystem::path denoisedPath(const std::filesystem::path& path) {
     return p;
 }
 
+std::vector<std::filesystem::path> denoisedOutputs(const SessionOptions& o) {
+    if (!o.denoiseOutput.empty()) return {o.denoiseOutput};
+    std::vector<std::filesystem::path> paths;
+    for (const std::filesystem::path& p : o.outputs) paths.push_back(denoisedPath(p));
+    return paths;
+}
+
+void addDenoisedWrites(const Image& denoised, const SessionOptions& o, WriteOptions options, std::vector<AtomicWrite>& writes) {
+    options.layers.clear();
+    options.metadata.emplace_back("vkpath.denoised", "yes: biased (the raw image is not)");
+    for (const std::filesystem::path& p : denoisedOutputs(o))
+        writes.push_back({p, [&denoised, options, p](std::ostream& out) {
+                              encodeImage(denoised, imageFormatFromPath(p), options, out, p.string());
+                          }});
+}
+
 SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::time_point processStart) {
     SessionResult res;
     const std::uint32_t first = renderer.firstSample();
@@ -237,19 +253,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     wo.exposure = o.exposure;
     wo.metadata = imageMetadata(first, renderer.samplesDone(), res.signal);
     // The denoised image: beside every output, or where --denoise-output says; never a raw one.
-    WriteOptions denoisedOptions = wo;
-    denoisedOptions.metadata.emplace_back("vkpath.denoised", "yes: biased (the raw image is not)");
-    if (fr.denoised) {
-        std::vector<std::filesystem::path> paths;
-        if (!o.denoiseOutput.empty()) paths.push_back(o.denoiseOutput);
-        else for (const std::filesystem::path& p : o.outputs) paths.push_back(denoisedPath(p));
-        for (const std::filesystem::path& p : paths) {
-            const ImageFormat format = imageFormatFromPath(p);
-            states.push_back({p, [&fr, &denoisedOptions, format, p](std::ostream& out) {
-                                  encodeImage(*fr.denoised, format, denoisedOptions, out, p.string());
-                              }});
-        }
-    }
+    if (fr.denoised) addDenoisedWrites(*fr.denoised, o, wo, states);
     wo.layers = aovLayers(o.aovs, fr.features.get(), fr.sums);
     writeImages(img, o.outputs, wo, std::move(states));
     res.outputSeconds += secondsSince(t1);

@@ -76,6 +76,11 @@ struct SessionOptions {
 
 /// The denoised image's file beside output `path`: "<stem>.denoised<ext>" (out.png -> out.denoised.png).
 std::filesystem::path denoisedPath(const std::filesystem::path& path);
+/// Where the denoised final image goes: `--denoise-output`, else denoisedPath of every output.
+std::vector<std::filesystem::path> denoisedOutputs(const SessionOptions& o);
+/// Appends to `writes` the files of denoisedOutputs(o) holding `denoised` (which must outlive
+/// them), with `options` (its layers left out) and the metadata vkpath.denoised.
+void addDenoisedWrites(const Image& denoised, const SessionOptions& o, WriteOptions options, std::vector<AtomicWrite>& writes);
 
 struct SessionResult {
     std::uint32_t spp = 0;

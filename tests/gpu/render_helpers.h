@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <utility>
@@ -120,6 +121,13 @@ inline void expectSamplersAgreeWithBsdf(VulkanDevice& dev, const Scene& scene, s
             EXPECT_LE(std::abs(z), maxZ) << what << ": " << samplerName(kAllSamplers[j]) << " channel " << c;
         }
     }
+}
+
+/// Writes `text` to dir/scene.json and loads it (its relative file references resolve in `dir`).
+inline Scene loadSceneText(const std::filesystem::path& dir, const std::string& text) {
+    const std::filesystem::path file = dir / "scene.json";
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+    return loadSceneJson(file);
 }
 
 /// Where the camera ray through image point (px, py) of `f` meets the plane z = zPlane; pixel

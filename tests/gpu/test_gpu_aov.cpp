@@ -44,12 +44,6 @@
 namespace vkp::test {
 namespace {
 
-Scene loadText(const std::filesystem::path& dir, const std::string& text) {
-    const std::filesystem::path file = dir / "scene.json";
-    std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
-    return loadSceneJson(file);
-}
-
 /// Renders `scene` with the feature images on, `spp` samples; returns the renderer (read what you need).
 TestRender renderWithAovs(VulkanDevice& dev, const Scene& scene, std::uint32_t spp, Sampler sampler = Sampler::Mis) {
     RenderOptions o;
@@ -76,7 +70,7 @@ TEST(GpuAov, TexturedQuadsShowTheirTextureNormalAndDepth) {
     writeImage(big, dir / "big.png");
     // Three quads in the plane z = -4.1 of the file, seen from z = 4 (the kernel's frame is the
     // file's minus (0, 0, 4): the positions must come back in the file's coordinates).
-    const Scene scene = loadText(dir, R"({
+    const Scene scene = loadSceneText(dir, R"({
       "camera": {"lookfrom": [0, 0, 4], "lookat": [0, 0, -4], "vfov": 40, "width": 72, "height": 20},
       "render": {"background": [1.5, 1.5, 1.5], "max_depth": 8},
       "materials": {
@@ -186,7 +180,7 @@ TEST(GpuAov, TexturedQuadsShowTheirTextureNormalAndDepth) {
 TEST(GpuAov, SphereNormalsAndPositionsAreTheFootprintMeans) {
     VKP_REQUIRE_DEVICE(dev);
     const auto dir = scratchDir("gpu_aov_sphere");
-    const Scene scene = loadText(dir, R"({
+    const Scene scene = loadSceneText(dir, R"({
       "camera": {"lookfrom": [1, 2, 3], "lookat": [1, 2, -5], "vfov": 30, "width": 32, "height": 32},
       "render": {"background": [0.5, 0.5, 0.5], "max_depth": 4},
       "materials": {"m": {"type": "lambertian", "albedo": [0.6, 0.5, 0.4]}},
@@ -250,7 +244,7 @@ TEST(GpuAov, AMirrorTintsTheAlbedoBehindItAndAFuzzyMetalIsItself) {
     const auto dir = scratchDir("gpu_aov_mirror");
     // A mirror at 45 degrees in front of the camera sends its rays to +x, onto a wall facing -x.
     for (const char* fuzz : {"0", "0.3"}) {
-        const Scene scene = loadText(dir, std::string(R"({
+        const Scene scene = loadSceneText(dir, std::string(R"({
           "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vfov": 10, "width": 16, "height": 16},
           "render": {"background": [0.2, 0.2, 0.2], "max_depth": 6},
           "materials": {"mirror": {"type": "metal", "albedo": [0.5, 0.6, 0.7], "fuzz": )") + fuzz + R"(},

@@ -50,19 +50,13 @@ void writeImages(const std::filesystem::path& dir) {
     writeImage(big, dir / "big.png");
 }
 
-Scene loadText(const std::filesystem::path& dir, const std::string& text) {
-    const std::filesystem::path file = dir / "scene.json";
-    std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
-    return loadSceneJson(file);
-}
-
 // ---- 1. GLSL against C++ ------------------------------------------------------------------------
 
 TEST(GpuSolidTextures, GlslMatchesCppValueByValue) {
     VKP_REQUIRE_DEVICE(dev);
     const auto dir = scratchDir("gpu_solid_textures_kernel");
     writeImages(dir);
-    const Scene scene = loadText(dir, R"({
+    const Scene scene = loadSceneText(dir, R"({
       "camera": {"lookfrom": [0, 0, 0], "lookat": [0, 0, -1], "vfov": 40, "width": 8, "height": 8},
       "materials": {
         "a": {"type": "lambertian", "albedo": {"type": "checker", "scale": 0.7, "even": [0.2, 0.3, 0.1],
@@ -160,7 +154,7 @@ TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
     writeImages(dir);
     // Three quads side by side in the plane z = -4.1 (the camera is at z = 4 of the file: the
     // kernel's points are the file's minus (0, 0, 4), which the textures must add back).
-    const Scene scene = loadText(dir, R"({
+    const Scene scene = loadSceneText(dir, R"({
       "camera": {"lookfrom": [0, 0, 4], "lookat": [0, 0, -4], "vfov": 40, "width": 48, "height": 16},
       "render": {"background": [1, 1, 1], "max_depth": 8},
       "materials": {
@@ -251,7 +245,7 @@ TEST(GpuSolidTextures, AQuadUnderAUniformSkyShowsItsTexture) {
 TEST(GpuSolidTextures, NextEventEstimationReadsTheEmissionWhereItSamples) {
     VKP_REQUIRE_DEVICE(dev);
     const auto dir = scratchDir("gpu_solid_textures_lights");
-    const Scene scene = loadText(dir, R"({
+    const Scene scene = loadSceneText(dir, R"({
       "camera": {"lookfrom": [0, 3, 6], "lookat": [0, 0, 0], "vfov": 50, "width": 16, "height": 16},
       "render": {"background": [0, 0, 0], "max_depth": 6},
       "materials": {
