@@ -15,6 +15,14 @@
 //          latter in units of sigmaL x the 3x3-blurred standard deviation of the centre); the
 //          variance is carried along, var' = sum w^2 var / (sum w)^2 (SVGF eq. 3). With
 //          push.remodulate the output is multiplied back by a (the last level).
+//          With push.ridge >= 0 a level is a local linear fit instead of a weighted mean: the
+//          output is b0 of the weighted least-squares plane b0 + b1 tx + b2 ty through the taps
+//          (tx, ty in taps), the ridge adding ridge x sum(w) to the slopes' diagonal so a tap row
+//          along an edge still solves. A weighted mean whose window an edge cuts on one side is
+//          biased by the gradient times the window's offset; the plane is not (the boundary bias
+//          of kernel regression; Fan and Gijbels 1996, "Local Polynomial Modelling", sec. 3.2.5).
+//          Its variance is e^T (sum w^2 var u u^T) e with e the first row of the inverse moment
+//          matrix and u = (1, tx, ty).
 //
 // Data: every buffer holds one vec4 per pixel of the band, row-major, `push.width` wide and
 // `push.rows` rows (row 0 = the band's top). Bindings:
@@ -47,6 +55,7 @@ layout(push_constant) uniform Push {
     float sigmaN;     // normal: exponent of the cosine
     float sigmaZ;     // depth: multiples of the depth change the gradient predicts that give 1/e
     float albedoEps;  // the albedo's floor for demodulation
+    float ridge;      // PASS 1: >= 0: local linear fit with this ridge on the slopes; < 0: weighted mean
 } push;
 
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);  // Rec. 709 luminance
@@ -106,8 +115,9 @@ void atrousLevel(int x, int y, int i) {
     float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
 
     const float kB3[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-    vec3 sum = vec3(0.0);
-    float sumVar = 0.0, sumW = 0.0;
+    vec3 sum = vec3(0.0), sumX = vec3(0.0), sumY = vec3(0.0);  // sum w q, sum w tx q, sum w ty q
+    float sumW = 0.0, m01 = 0.0, m02 = 0.0, m11 = 0.0, m12 = 0.0, m22 = 0.0;  // moments of w u u^T
+    float sumVar = 0.0, r01 = 0.0, r02 = 0.0, r11 = 0.0, r12 = 0.0, r22 = 0.0;  // of w^2 var u u^T
     const int s = int(push.step);
     for (int ty = -2; ty <= 2; ++ty)
         for (int tx = -2; tx <= 2; ++tx) {
@@ -128,13 +138,31 @@ void atrousLevel(int x, int y, int i) {
                 if (hasNormal || qHasNormal) logW += push.sigmaN * log(max(dot(g.xyz, gq.xyz), 1e-30));
             }
             float wq = kB3[tx + 2] * kB3[ty + 2] * exp(logW);
+            float u1 = float(tx), u2 = float(ty), wv = wq * wq * q.w;
             sum += wq * q.rgb;
-            sumVar += wq * wq * q.w;
+            sumX += wq * u1 * q.rgb;
+            sumY += wq * u2 * q.rgb;
             sumW += wq;
+            m01 += wq * u1; m02 += wq * u2; m11 += wq * u1 * u1; m12 += wq * u1 * u2; m22 += wq * u2 * u2;
+            sumVar += wv;
+            r01 += wv * u1; r02 += wv * u2; r11 += wv * u1 * u1; r12 += wv * u1 * u2; r22 += wv * u2 * u2;
         }
-    // sumW > 0: the centre's own weight is kB3[2]^2 (every factor 1 for itself).
-    vec3 rgb = sum / sumW;
-    float var = sumVar / (sumW * sumW);
+    // sumW > 0: the centre's weight is kB3[2]^2 times its normal factor, which is > 0.
+    vec3 rgb;
+    float var;
+    if (push.ridge < 0.0) {
+        rgb = sum / sumW;
+        var = sumVar / (sumW * sumW);
+    } else {
+        // The first row of the inverse of the symmetric moment matrix M + ridge sum(w) diag(0,1,1)
+        // (positive definite: sumW > 0), by cofactors.
+        float a11 = m11 + push.ridge * sumW, a22 = m22 + push.ridge * sumW;
+        float c0 = a11 * a22 - m12 * m12, c1 = m02 * m12 - m01 * a22, c2 = m01 * m12 - a11 * m02;
+        vec3 e = vec3(c0, c1, c2) / (sumW * c0 + m01 * c1 + m02 * c2);
+        rgb = max(e.x * sum + e.y * sumX + e.z * sumY, vec3(0.0));  // negative taps can undershoot 0
+        var = e.x * e.x * sumVar + e.y * e.y * r11 + e.z * e.z * r22 +
+              2.0 * (e.x * e.y * r01 + e.x * e.z * r02 + e.y * e.z * r12);
+    }
     if (push.remodulate != 0u) rgb *= demodAlbedo(i);
     illumOut[i] = vec4(rgb, var);
 }

@@ -306,6 +306,9 @@ void main() {
                 // A dropped sample adds no emission: it is not in the image either.
                 vec3 emit = dropped ? vec3(0.0f) : (s.aovEmitSet ? s.aovEmit : L);
                 aov3.xyz += (emit - aov3.xyz) / aov0.w;
+                float indirect = dropped ? 0.0f : luminance709(L - emit);
+                aov2.w += (indirect - aov2.w) / aov0.w;
+                aov3.w += (indirect * indirect - aov3.w) / aov0.w;
                 if (s.aovPos.w > 0.0f) {
                     aov1.w += 1.0f;
                     aov2.xyz += (s.aovPos.xyz - aov2.xyz) / aov1.w;

@@ -57,6 +57,8 @@ std::vector<ChannelMap> channelMaps(bool adaptive, bool aov) {
         }
         m.push_back({"aov_samples", &RenderState::aov, 3, kAovFloatsPerPixel});
         m.push_back({"aov_hits", &RenderState::aov, 7, kAovFloatsPerPixel});
+        m.push_back({"aov_indirect.mean", &RenderState::aov, 11, kAovFloatsPerPixel});
+        m.push_back({"aov_indirect.sq", &RenderState::aov, 15, kAovFloatsPerPixel});
     }
     std::sort(m.begin(), m.end(), [](const ChannelMap& a, const ChannelMap& b) { return a.name < b.name; });  // EXR's order
     return m;

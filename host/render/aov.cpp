@@ -1,5 +1,6 @@
 #include "render/aov.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -58,9 +59,10 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
     f.emission = Image(width, height);
     f.depth.assign(n, std::numeric_limits<float>::infinity());
     f.hitFraction.assign(n, 0.0f);
+    f.indirectVariance.assign(n, 0.0f);
     const glm::dvec3 axis(frame.viewAxis), eye(frame.eye);
     for (std::size_t i = 0; i < n; ++i) {
-        const float* s = sums.data() + i * kAovFloatsPerPixel;  // shared/aov.h: (albedo, samples), (normal, hits), (position, 0)
+        const float* s = sums.data() + i * kAovFloatsPerPixel;  // shared/aov.h: (albedo, samples), (normal, hits), (position, indirect), (emission, indirect^2)
         const double samples = s[3], hits = s[7];
         if (samples > 0.0) {
             for (int c = 0; c < 3; ++c) {
@@ -69,6 +71,10 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
                 f.emission.rgb[3 * i + c] = s[12 + c];
             }
             f.hitFraction[i] = float(hits / samples);
+            if (samples >= 2.0) {
+                const double mean = s[11], sampleVariance = std::max(0.0, double(s[15]) - mean * mean) * samples / (samples - 1.0);
+                f.indirectVariance[i] = float(sampleVariance / samples);
+            }
         }
         if (hits > 0.0) {
             const glm::dvec3 p(s[8], s[9], s[10]);  // camera-relative

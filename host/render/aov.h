@@ -43,6 +43,10 @@ struct FeatureImages {
     std::vector<float> depth;  ///< that position's distance along the view axis (world units); +inf where none hit
     std::vector<float> hitFraction;  ///< fraction of the pixel's samples whose camera ray hit something
     Image emission;  ///< mean radiance seen before the first non-specular vertex (shared/aov.h)
+    /// Variance of the MEAN of the luminance of radiance - emission (shared/aov.h "indirect"):
+    /// the sample variance (n/(n-1) corrected) over all n samples, divided by n; 0 where n < 2.
+    /// What the denoiser filters is that part, so its edge-stopping reads this variance.
+    std::vector<float> indirectVariance;
 };
 
 /// The feature images from the AOV sums (Renderer::readAovSums, RenderState::aov; kAovFloatsPerPixel

@@ -48,6 +48,12 @@ struct DenoiseOptions {
     /// (to rounding), whatever the albedo. A black pixel (albedo 0) is filtered as radiance / eps
     /// and multiplied back by eps: what it gathers from brighter neighbours is scaled down by eps.
     float albedoEpsilon = 1e-3f;
+    /// Each level fits a plane to its taps (local linear regression) and keeps the plane's value at
+    /// the centre, instead of their weighted mean: no bias from a gradient where an edge cuts the
+    /// window on one side. The ridge (in units of the taps' total weight, taps 1 apart) keeps the
+    /// fit solvable when the taps lie on one line; < 0: the weighted mean (SVGF's level).
+    /// Measured choice: docs/design.md "Denoiser".
+    float localLinearRidge = 0.01f;
     /// Tests only: the most rows one band may hold (0: as many as the device's limits allow), to
     /// force bands on a small image.
     std::uint32_t maxBandRows = 0;

@@ -61,6 +61,8 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
                     aov[p + 8 + c] += hits * a[8 + c];
                     aov[p + 12 + c] += samples * a[12 + c];
                 }
+                aov[p + 11] += samples * a[11];  // the indirect luminance's mean and mean square
+                aov[p + 15] += samples * a[15];
                 aov[p + 3] += samples;
                 aov[p + 7] += hits;
             }
@@ -74,6 +76,8 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
                 m.aov[p + 8 + c] = hits > 0.0 ? float(aov[p + 8 + c] / hits) : 0.0f;
                 m.aov[p + 12 + c] = samples > 0.0 ? float(aov[p + 12 + c] / samples) : 0.0f;
             }
+            m.aov[p + 11] = samples > 0.0 ? float(aov[p + 11] / samples) : 0.0f;
+            m.aov[p + 15] = samples > 0.0 ? float(aov[p + 15] / samples) : 0.0f;
             m.aov[p + 3] = float(samples);
             m.aov[p + 7] = float(hits);
         }

@@ -20,6 +20,10 @@
 //            mirrors and glass. It has no noise but the pixel filter's, so the denoiser leaves it
 //            out of what it filters and adds it back. Averaged over all samples (a sample the
 //            image drops as not finite adds 0).
+//   indirect the Rec. 709 luminance of the rest of the sample's radiance (radiance - emission),
+//            its mean and the mean of its square over all samples (a dropped sample adds 0):
+//            the variance the denoiser's edge-stopping needs is that of what it filters, which
+//            the emission's pixel-coverage noise (at a light's edge, huge) must not inflate.
 // depth is the position's distance along the camera's view axis, computed by the host from the
 // mean position (it is linear in it); variance and spp come from the accumulation sums.
 #ifndef VKP_AOV_H
@@ -31,8 +35,8 @@
 VKP_BEGIN
 
 /// vec4s per pixel in the AOV buffer: [k*i] = (mean albedo RGB, samples), [k*i+1] = (mean normal
-/// XYZ, hits), [k*i+2] = (mean position XYZ over the hits, in camera-relative world units, 0),
-/// [k*i+3] = (mean emission RGB, 0).
+/// XYZ, hits), [k*i+2] = (mean position XYZ over the hits, in camera-relative world units, mean
+/// indirect luminance), [k*i+3] = (mean emission RGB, mean squared indirect luminance).
 /// Running means, mean += (x - mean) / n after each sample (Welford 1962): a constant stays exact,
 /// and rounding grows like sqrt(n) ulps where a float sum's grows like n ulps (2e-6 relative
 /// after 256 samples of 0.9, which a sum gets; the mean gets 0).

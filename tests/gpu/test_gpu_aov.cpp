@@ -266,6 +266,53 @@ TEST(GpuAov, AMirrorTintsTheAlbedoBehindItAndAFuzzyMetalIsItself) {
     }
 }
 
+// ---- 3b. The indirect moments -------------------------------------------------------------------
+
+TEST(GpuAov, TheIndirectMomentsLeaveTheEmissionOut) {
+    VKP_REQUIRE_DEVICE(dev);
+    const auto dir = scratchDir("gpu_aov_indirect");
+    // Everything grey under a white light, so every sample's radiance has R = G = B and its
+    // luminance is any channel: where no sample saw emission, the indirect moments are the
+    // image's own. The light (which reflects nothing) fills the top of the image.
+    const Scene scene = loadSceneText(dir, R"({
+      "camera": {"lookfrom": [0, 1, 3], "lookat": [0, 1, 0], "vfov": 60, "width": 24, "height": 24},
+      "render": {"background": [0, 0, 0], "max_depth": 6},
+      "materials": {"grey": {"type": "lambertian", "albedo": [0.5, 0.5, 0.5]},
+                    "light": {"type": "diffuse_light", "emit": [4, 4, 4]}},
+      "objects": [{"type": "quad", "Q": [-10, 0, -10], "u": [20, 0, 0], "v": [0, 0, 20], "material": "grey"},
+                  {"type": "quad", "Q": [-0.9, 2.4, -1], "u": [1.8, 0, 0], "v": [0, 0, 2], "material": "light"},
+                  {"type": "quad", "Q": [-10, 0, -3], "u": [20, 0, 0], "v": [0, 10, 0], "material": "grey"}]})");
+    const std::uint32_t spp = 64;
+    TestRender r = renderWithAovs(dev, scene, spp);
+    const std::vector<float> sums = r.renderer->readAovSums();
+    const FeatureImages f = featuresOf(r);
+    const PixelSums px = r.renderer->readSums();
+    const Image mean = px.mean(), var = px.varianceOfMean();
+    int plain = 0, inLight = 0, edge = 0;
+    for (std::size_t i = 0; i < mean.pixelCount(); ++i) {
+        const float* a = sums.data() + i * kAovFloatsPerPixel;
+        ASSERT_EQ(a[3], float(spp));
+        const float e = f.emission.rgb[3 * i];
+        if (e == 0.0f) {  // no sample saw the light: the moments are the image's
+            ++plain;
+            EXPECT_NEAR(a[11], mean.rgb[3 * i], 1e-5 * mean.rgb[3 * i] + 1e-7) << "pixel " << i;
+            // Running means of L and L^2 in float: each within ~sqrt(n) ulps; the variance is
+            // their difference, so its error is bounded by the mean square's.
+            EXPECT_NEAR(f.indirectVariance[i], var.rgb[3 * i], 1e-3 * var.rgb[3 * i] + 4e-6 * a[15] / spp) << "pixel " << i;
+        } else if (e == 4.0f) {  // every sample saw the light and nothing else
+            ++inLight;
+            EXPECT_EQ(a[11], 0.0f) << "pixel " << i;
+            EXPECT_EQ(a[15], 0.0f) << "pixel " << i;
+        } else {  // the light's edge: its coverage noise is in the image's variance, not here
+            ++edge;
+            EXPECT_LT(f.indirectVariance[i], 0.5f * var.rgb[3 * i]) << "pixel " << i;
+        }
+    }
+    EXPECT_GT(plain, 200);
+    EXPECT_GT(inLight, 10);
+    EXPECT_GT(edge, 5);
+}
+
 // ---- 4. The image does not change ----------------------------------------------------------------
 
 TEST(GpuAov, TheImageIsBitIdenticalWithAndWithoutFeatureImages) {

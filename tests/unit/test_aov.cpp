@@ -78,6 +78,25 @@ TEST(AovImages, MeansDepthAndWorldPositionsFromTheSums) {
     EXPECT_THROW(featureImages(sums, 2, 1, frame), std::invalid_argument);
 }
 
+TEST(AovImages, IndirectVarianceIsTheVarianceOfTheMeanFromTheMoments) {
+    std::vector<float> sums(3 * kAovFloatsPerPixel, 0.0f);
+    // Pixel 0: 4 samples of indirect luminance 1, 3, 1, 3: mean 2, mean square 5, sample variance
+    // (5 - 4) x 4/3, of the mean / 4.  Pixel 1: 1 sample (no variance).  Pixel 2: none.
+    putPixel(sums, 0, {0.5f, 0.5f, 0.5f}, 4.0f, {0.0f, 0.0f, 1.0f}, 4.0f, {0.0f, 0.0f, -1.0f});
+    sums[11] = 2.0f;
+    sums[15] = 5.0f;
+    putPixel(sums, 1, {0.5f, 0.5f, 0.5f}, 1.0f, {0.0f, 0.0f, 1.0f}, 1.0f, {0.0f, 0.0f, -1.0f});
+    sums[kAovFloatsPerPixel + 11] = 7.0f;
+    sums[kAovFloatsPerPixel + 15] = 49.0f;
+    const FeatureImages f = featureImages(sums, 3, 1, AovFrame{});
+    ASSERT_EQ(f.indirectVariance.size(), 3u);
+    EXPECT_FLOAT_EQ(f.indirectVariance[0], 1.0f / 3.0f);
+    EXPECT_EQ(f.indirectVariance[1], 0.0f);
+    EXPECT_EQ(f.indirectVariance[2], 0.0f);
+    sums[15] = 3.9f;  // rounding made the mean square smaller than the squared mean: 0, not negative
+    EXPECT_EQ(featureImages(sums, 3, 1, AovFrame{}).indirectVariance[0], 0.0f);
+}
+
 TEST(AovImages, LayersNameTheirChannelsAndTakeVarianceAndSppFromTheSums) {
     std::vector<float> sums(2 * kAovFloatsPerPixel, 0.0f);
     putPixel(sums, 0, {0.5f, 0.5f, 0.5f}, 2.0f, {0.0f, 1.0f, 0.0f}, 2.0f, {0.0f, 0.0f, -2.0f});
@@ -190,7 +209,7 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
     a.sum.assign(6 * kStateFloatsPerPixel, 1.0f);
     a.sumSq.assign(6 * kStateFloatsPerPixel, 2.0f);
     a.aov.resize(6 * kAovFloatsPerPixel);
-    for (std::size_t i = 0; i < a.aov.size(); ++i) a.aov[i] = i % 4 == 3 && i % 16 > 7 ? 0.0f : 0.125f * float(i) + 1.0f / 3.0f;  // 11, 15: unused, 0
+    for (std::size_t i = 0; i < a.aov.size(); ++i) a.aov[i] = 0.125f * float(i) + 1.0f / 3.0f;  // 11, 15: the indirect moments
     RenderKey key;
     key.entries = {{"aov", "on"}};
     const fs::path file = test::scratchDir("aov_files") / "part.exr";
@@ -206,8 +225,8 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
         a.aov[p + 7] = 1.0f;
         b.aov[p + 3] = 1.0f;
         b.aov[p + 7] = 1.0f;
-        for (int c = 0; c < 15; ++c)
-            if (c % 4 != 3) b.aov[p + std::size_t(c)] = a.aov[p + std::size_t(c)] + 4.0f;
+        for (int c = 0; c < 16; ++c)
+            if (c != 3 && c != 7) b.aov[p + std::size_t(c)] = a.aov[p + std::size_t(c)] + 4.0f;
     }
     const RenderState m = addStates({&a, &b}, 0, 8);
     ASSERT_EQ(m.aov.size(), a.aov.size());
@@ -218,6 +237,8 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
             EXPECT_FLOAT_EQ(m.aov[p + 8 + c], a.aov[p + 8 + c] + 2.0f);    // over the hits: (a + (a + 4)) / 2
             EXPECT_FLOAT_EQ(m.aov[p + 12 + c], a.aov[p + 12 + c] + 1.0f);
         }
+        EXPECT_FLOAT_EQ(m.aov[p + 11], a.aov[p + 11] + 1.0f);  // the indirect moments: over the samples
+        EXPECT_FLOAT_EQ(m.aov[p + 15], a.aov[p + 15] + 1.0f);
         EXPECT_EQ(m.aov[p + 3], 4.0f);
         EXPECT_EQ(m.aov[p + 7], 2.0f);
     }
