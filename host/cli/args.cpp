@@ -55,7 +55,8 @@ usage:
   vkpath info SCENE                    primitives, lights, BVH statistics, shader variant, and whether
                                        the render fits the device (takes --width, --height, --device)
   vkpath devices [--validate]          list Vulkan devices and why any is unusable
-  vkpath merge PART... -o OUT          add up the partial files of sample ranges of one render (--partial)
+  vkpath merge PART... -o OUT          add up the partial files of sample ranges of one render (--partial);
+                                       --aov LIST writes their feature images (parts rendered with --aov)
                                        into its image; also takes --partial FILE, --exposure, --quiet
   vkpath --help | --version
 
@@ -181,7 +182,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--help" || f == "-h") { a.command = Command::Help; return a; }
         if (!f.empty() && f[0] == '-' && f != "-") {
             renderOnly = true;
-            if (f != "-o" && f != "--partial" && f != "--exposure" && f != "--quiet" && f != "-q" && renderOnlyFlag.empty()) renderOnlyFlag = f;
+            if (f != "-o" && f != "--partial" && f != "--exposure" && f != "--aov" && f != "--quiet" && f != "-q" && renderOnlyFlag.empty())
+                renderOnlyFlag = f;
             if (f == "-o") a.session.outputs.emplace_back(value(f));
             else if (f == "--spp") a.spp = parseUint(f, value(f), 1, 1u << 24);
             else if (f == "--time") a.session.timeLimit = parseDouble(f, value(f), 1e-3, 1e7);
@@ -269,8 +271,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
     if (a.command == Command::Merge) {
         if (a.width || a.height || !a.device.empty() || a.validate || a.gltfScene || a.camera || a.background ||
             !a.environment.empty() || a.environmentStrength || a.environmentRotate || !a.instancing)
-            usage("vkpath merge takes -o, --partial, --exposure and --quiet only");
-        if (!renderOnlyFlag.empty()) usage("vkpath merge takes -o, --partial, --exposure and --quiet, not " + renderOnlyFlag);
+            usage("vkpath merge takes -o, --partial, --aov, --exposure and --quiet only");
+        if (!renderOnlyFlag.empty()) usage("vkpath merge takes -o, --partial, --aov, --exposure and --quiet, not " + renderOnlyFlag);
         if (a.parts.empty()) usage("vkpath merge needs partial files (written by vkpath render --partial)");
         if (a.session.outputs.empty() && a.session.partial.empty()) usage("vkpath merge needs -o OUT or --partial FILE");
         return a;

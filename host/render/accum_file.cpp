@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <ostream>
 
 #include "core/atomic_file.h"
@@ -81,6 +84,38 @@ std::uint64_t parseU64(const std::filesystem::path& path, const std::string& att
         throw InputError(path.string() + ": attribute " + attr + " is not a whole number: '" + v + "'");
     return x;
 }
+/// RenderState::aovFrame as 9 numbers (world origin, eye, view axis), each exact ("%.17g").
+std::string formatAovFrame(const AovFrame& f) {
+    const double v[9] = {f.worldOrigin.x, f.worldOrigin.y, f.worldOrigin.z, f.eye.x, f.eye.y, f.eye.z, f.viewAxis.x, f.viewAxis.y, f.viewAxis.z};
+    std::string s;
+    char buf[32];
+    for (double x : v) {
+        std::snprintf(buf, sizeof buf, "%.17g", x);
+        if (!s.empty()) s += ' ';
+        s += buf;
+    }
+    return s;
+}
+
+/// The inverse of formatAovFrame; nullopt unless the text is 9 finite numbers.
+std::optional<AovFrame> parseAovFrame(const std::string& text) {
+    double v[9];
+    const char* p = text.c_str();
+    for (double& x : v) {
+        char* end = nullptr;
+        x = std::strtod(p, &end);
+        if (end == p || !std::isfinite(x)) return std::nullopt;
+        p = end;
+    }
+    while (*p == ' ') ++p;
+    if (*p) return std::nullopt;
+    AovFrame f;
+    f.worldOrigin = glm::dvec3(v[0], v[1], v[2]);
+    f.eye = glm::vec3(float(v[3]), float(v[4]), float(v[5]));
+    f.viewAxis = glm::vec3(float(v[6]), float(v[7]), float(v[8]));
+    return f;
+}
+
 }  // namespace
 
 void encodeAccumFile(std::ostream& out, const std::filesystem::path& path, const RenderKey& key, const RenderState& state) {
@@ -107,6 +142,7 @@ void encodeAccumFile(std::ostream& out, const std::filesystem::path& path, const
     attrs.emplace_back("vkpath.rays", std::to_string(state.counters.rays));
     attrs.emplace_back("vkpath.nonfinite", std::to_string(state.counters.nonfinite));
     attrs.emplace_back("vkpath.loopGuard", std::to_string(state.counters.loopGuard));
+    if (!state.aov.empty()) attrs.emplace_back("vkpath.aovFrame", formatAovFrame(state.aovFrame));
     for (const auto& [name, value] : key.entries) attrs.emplace_back(keyAttributeName(name), value);
     std::vector<EXRAttribute> custom(attrs.size());
     for (std::size_t k = 0; k < attrs.size(); ++k) {
@@ -218,7 +254,12 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
         st.decision.assign(n * kStateFloatsPerPixel, 0.0f);
         st.active.assign(n, 0);
     }
-    if (aov) st.aov.assign(n * kAovFloatsPerPixel, 0.0f);
+    if (aov) {
+        st.aov.assign(n * kAovFloatsPerPixel, 0.0f);
+        const std::optional<AovFrame> frame = parseAovFrame(attr("vkpath.aovFrame"));
+        if (!frame) fail("attribute vkpath.aovFrame is not 9 numbers: '" + attr("vkpath.aovFrame") + "'");
+        st.aovFrame = *frame;
+    }
     for (const ChannelMap& m : channelMaps(adaptive, aov)) {
         int index = -1;
         for (int c = 0; c < header.h.num_channels; ++c)

@@ -68,6 +68,7 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
             }
         }
         m.aov.assign(n, 0.0f);
+        m.aovFrame = states.front()->aovFrame;  // one render (the key says so): one frame
         for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel) {
             const double samples = aov[p + 3], hits = aov[p + 7];
             for (int c = 0; c < 3; ++c) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/aov.h"
 #include "render/renderer.h"
 #include "shared/aov.h"
 
@@ -35,6 +36,10 @@ struct RenderState {
     /// Feature images only (`--aov`, else empty): kAovFloatsPerPixel floats per pixel, the device's
     /// sums (shared/aov.h).
     std::vector<float> aov;
+    /// Feature images only: where their positions are (GpuArrays::aovFrame), so that a file alone
+    /// (`vkpath merge`) can make the position and depth images. Set by whoever takes the state
+    /// (Renderer::state leaves the default).
+    AovFrame aovFrame;
 
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }
     bool adaptive() const { return !active.empty(); }

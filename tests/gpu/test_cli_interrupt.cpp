@@ -190,6 +190,47 @@ TEST_F(CliInterrupt, SampleRangesMergeToTheSingleRender) {
     EXPECT_FALSE(fs::exists(dir / "gap.exr") || fs::exists(dir / "overlap.exr"));
 }
 
+// `vkpath merge --aov`: the feature images of the merged parts are those of the single render
+// (count-weighted means of running means: equal within float rounding), the positions in the
+// scene's coordinates from the frame the parts carry (vkpath.aovFrame).
+TEST_F(CliInterrupt, SampleRangesMergeTheirFeatureImages) {
+    VKP_REQUIRE_DEVICE(dev);
+    for (const char* range : {"0:7", "7:16"}) {
+        const ProcessResult r = run(render({"--sample-range", range, "--aov", "albedo,normal", "--partial",
+                                            std::string("p") + range[0] + ".exr", "--quiet"}));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    ASSERT_EQ(run(render({"--spp", "16", "--aov", "all", "-o", "single.exr", "--quiet"})).exitCode, 0);
+    ProcessResult r = run({"merge", "p0.exr", "p7.exr", "--aov", "all", "-o", "merged.exr", "-o", "merged.png", "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* layer : {"albedo", "normal", "depth", "position", "emission", "variance", "spp"}) {
+        const Image m = readImageLayer(dir / "merged.exr", layer), s = readImageLayer(dir / "single.exr", layer);
+        ASSERT_EQ(m.rgb.size(), s.rgb.size());
+        double worst = 0.0, largest = 0.0;
+        for (std::size_t i = 0; i < s.rgb.size(); ++i) {
+            if (std::isinf(s.rgb[i]) || std::isinf(m.rgb[i])) {  // depth where nothing was hit: both
+                EXPECT_EQ(s.rgb[i], m.rgb[i]) << layer << " value " << i;
+                continue;
+            }
+            worst = std::max(worst, std::abs(double(m.rgb[i]) - s.rgb[i]));
+            largest = std::max(largest, std::abs(double(s.rgb[i])));
+        }
+        std::printf("merged %s: largest difference %.3g (largest value %.3g)\n", layer, worst, largest);
+        EXPECT_GT(largest, 0.0) << layer;
+        EXPECT_LE(worst, 2e-6 * std::max(largest, 1.0)) << layer;  // a few float roundings of a mean
+    }
+    EXPECT_TRUE(fs::exists(dir / "merged.albedo.pfm"));  // a PNG gets its layers beside it
+    // Without the parts' feature sums only variance and spp can be written.
+    ASSERT_EQ(run(render({"--sample-range", "0:4", "--partial", "plain.exr", "--quiet"})).exitCode, 0);
+    r = run({"merge", "plain.exr", "--aov", "variance,spp", "-o", "plain-merged.exr", "--quiet"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    r = run({"merge", "plain.exr", "--aov", "albedo", "-o", "refused.exr"});
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("--aov albedo needs parts rendered with --aov"), std::string::npos) << r.err;
+    EXPECT_EQ(lineCount(r.err), 1);
+    EXPECT_FALSE(fs::exists(dir / "refused.exr"));
+}
+
 // Several devices in one process (`--device 0,0` opens lavapipe twice): the samples are split in
 // rounds and merged; the image equals one device's render within float rounding (printed).
 TEST_F(CliInterrupt, TwoDevicesEqualOneDevice) {
