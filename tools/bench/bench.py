@@ -8,22 +8,28 @@ spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
      pixel with a fresh, empty cache (cold) and again with the same cache (warm);
   3. renders one time-limited run per sampler with --reference/--error-log (rows at 1, 2, 4, ... spp):
      the time-versus-error curve, the samples/s and rays/s, and the time to reach each relMSE threshold;
+     the default sampler's run has --denoise, so its log also gives the denoised image's curve and
+     times (measured only: the denoised image is biased, its error is not extrapolated);
   4. compares LP_NUM_THREADS=1 with 2, and --variant auto with --variant full (steady samples/s);
   5. where the Embree reference is built (tests/bench/embree_reference, embree.py), runs it and
      vkpath for the same time at the same size and thread count: "ratio to Embree" = vkpath's
      rays/s over Embree's, and their images' means must agree within noise (scenes it does not
      support are listed with its reason);
+  6. the denoiser (issue 17): renders of exactly 16 and 64 spp with --denoise: the raw and denoised
+     relMSE, their ratio (target: at most 0.1), and the denoiser's seconds over the time of 4 spp
+     (target: at most 1); the targets are reported as met or not, never failed;
 and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
 
 Usage: bench.py [--quick] --vkpath BUILD/vkpath [--embree BUILD/tests/bench/embree_reference | --no-embree]
                 [--out DIR] [--cache DIR] [--scenes a,b] [--refresh-references] [--ref-budget S]
-                [--curve-seconds S] [--embree-seconds S]
+                [--curve-seconds S] [--embree-seconds S] [--parts curves,scaling,settings,embree,denoise]
 Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
 python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
 """
 import argparse
 import datetime
 import json
+import math
 import os
 import pathlib
 import shutil
@@ -32,7 +38,7 @@ import sys
 import time
 
 try:
-    import numpy  # noqa: F401  (pfm.py and metrics.py need it)
+    import numpy  # also for pfm.py and metrics.py
     import matplotlib  # noqa: F401
 except ImportError as e:
     print("bench: %s: install python3-numpy and python3-matplotlib (tools/deps.sh --bench)" % e, file=sys.stderr)
@@ -69,7 +75,10 @@ MODES = {
     "quick": dict(curve=6.0, scaling=3.0, settings=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64),
                   load_timeout=120),
 }
-PARTS = ("curves", "scaling", "settings", "embree")
+PARTS = ("curves", "scaling", "settings", "embree", "denoise")
+DENOISE_SPP = (16, 64)   # the denoise part's renders
+DENOISE_TARGET = 0.1     # issue 17: the denoised relMSE at most a tenth of the raw image's at the same spp ...
+DENOISE_TIME_SPP = 4     # ... and the denoiser's own time at most that of 4 spp at the same size
 EMBREE_Z_MAX = 5.0  # the Embree image's region means must agree with vkpath's within this many standard errors
 # Equal-time comparisons of one setting against the default (same sampler, same --time): what each
 # knob buys. name -> extra vkpath arguments.
@@ -156,6 +165,86 @@ def crossings(rows, floor_rel, t_start):
     return out
 
 
+def denoised_crossings(rows, floor_rel):
+    """Threshold -> {"seconds", "how"} of the denoised image (error-log rows with the denoised columns
+    and "ref_limited_denoised"): measured crossings only, at seconds + denoise_seconds (when the
+    denoised image is ready). The denoised image is biased, its error need not fall ~1/t: a threshold
+    that no reliable point reaches is "not reached", never extrapolated."""
+    good = [(r["seconds"] + r["denoise_seconds"], r["relmse_denoised"]) for r in rows
+            if not r["ref_limited_denoised"]]
+    out = {}
+    for thr in THRESHOLDS:
+        if floor_rel > LIMITED_FRACTION * thr:
+            out[str(thr)] = {"seconds": None, "how": "reference-limited"}
+            continue
+        t = metrics.interpolate_crossing(good, thr)
+        out[str(thr)] = {"seconds": t, "how": "measured"} if t is not None else {"seconds": None, "how": "not reached"}
+    return out
+
+
+def mark_limited(rows, floor_rel):
+    """Marks each error-log row reference-limited ("ref_limited", and "ref_limited_denoised" where the
+    row has a denoised error) when the reference's floor is above LIMITED_FRACTION of its error."""
+    for r in rows:
+        r["ref_limited"] = floor_rel > LIMITED_FRACTION * r["relmse"]
+        if "relmse_denoised" in r:
+            r["ref_limited_denoised"] = floor_rel > LIMITED_FRACTION * r["relmse_denoised"]
+    return rows
+
+
+def denoise_result(spp, row, floor_rel, seconds_4spp):
+    """The denoise part's numbers at `spp` from the error log's last row (with the denoised columns):
+    raw and denoised relMSE, their ratio against DENOISE_TARGET, and the denoiser's seconds over
+    `seconds_4spp` (the time of DENOISE_TIME_SPP spp at the same size). Targets are reported, not
+    enforced."""
+    raw, den, secs = row["relmse"], row["relmse_denoised"], row["denoise_seconds"]
+    ratio = den / raw if raw > 0 else None
+    time_ratio = secs / seconds_4spp if seconds_4spp else None
+    return {"spp": spp, "relmse": raw, "relmse_denoised": den, "ratio": ratio,
+            "target_met": ratio is not None and ratio <= DENOISE_TARGET,
+            "ref_limited": floor_rel > LIMITED_FRACTION * raw,
+            "ref_limited_denoised": floor_rel > LIMITED_FRACTION * den,
+            "denoise_seconds": secs, "time_ratio": time_ratio,
+            "time_target_met": time_ratio is not None and time_ratio <= 1.0}
+
+
+def bench_denoise(vk, scene, runs, wh, ref, env, name, failures):
+    """The denoiser at DENOISE_SPP spp (default sampler, --denoise, no --time) against the reference,
+    and one DENOISE_TIME_SPP-spp render without it for the time of those samples (steady rate: the
+    first batch's JIT left out). Failures only for broken runs: a missing denoised column or image,
+    a non-finite denoised image or error; the targets are measured and reported."""
+    base = vk.render(scene, runs, "denoise-time", wh + ["--spp", DENOISE_TIME_SPP, "-o", "denoise-time.pfm"], env)
+    seconds_4spp = DENOISE_TIME_SPP * base["pixels"] / steady(base)
+    out = {"time_spp": DENOISE_TIME_SPP, "seconds_4spp": seconds_4spp, "seconds_4spp_render": base["seconds_render"],
+           "target": DENOISE_TARGET, "runs": []}
+    for spp in DENOISE_SPP:
+        tag = "denoise-%d" % spp
+        logf = os.path.join(runs, tag + ".csv")
+        st = vk.render(scene, runs, tag, wh + ["--spp", spp, "--denoise", "--reference", ref["path"],
+                                              "--error-log", logf, "-o", tag + ".pfm"], env)
+        for bad in ("nonfinite_samples", "loop_guard_paths"):
+            if st[bad]:
+                failures.append("%s/denoise %d spp: %d %s" % (name, spp, st[bad], bad))
+        rows = vkrun.read_error_log(logf)
+        if not vkrun.has_denoised(rows) or rows[-1]["spp"] != spp:
+            failures.append("%s/denoise %d spp: the error log has no denoised row at %d spp" % (name, spp, spp))
+            continue
+        image_path = os.path.join(runs, tag + ".denoised.pfm")
+        if not os.path.exists(image_path):
+            failures.append("%s/denoise %d spp: --denoise wrote no %s" % (name, spp, image_path))
+            continue
+        r = denoise_result(spp, rows[-1], ref["floor_relmse"], seconds_4spp)
+        if not numpy.isfinite(pfm.read_pfm(image_path)).all() or not math.isfinite(r["relmse_denoised"]):
+            failures.append("%s/denoise %d spp: non-finite denoised image (relMSE %s)" %
+                            (name, spp, r["relmse_denoised"]))
+        r["samples_per_second"] = steady(st)
+        out["runs"].append(r)
+        log("  denoised %d spp: relMSE %.3g raw, %.3g denoised (ratio %s), denoiser %.3g s = %.2fx the time of "
+            "%d spp" % (spp, r["relmse"], r["relmse_denoised"], "%.3f" % r["ratio"] if r["ratio"] is not None else "—",
+            r["denoise_seconds"], r["time_ratio"] or 0.0, DENOISE_TIME_SPP))
+    return out
+
+
 def steady(st):
     return st["samples_per_second_steady"] or st["samples_per_second"]
 
@@ -208,7 +297,7 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     # The reference is what the curves and settings measure errors against; `--parts scaling,embree`
     # (rates only) needs none.
     ref, res["reference"] = None, None
-    if args.references_only or {"curves", "settings"} & args.parts:
+    if args.references_only or {"curves", "settings", "denoise"} & args.parts:
         ref = references.ensure_reference(vk, scene, name, W, H, vk.default_sampler, args.cache, args.max_floor,
                                           args.ref_budget or cfg["ref_budget"], cfg["pilot_spp"], log,
                                           dict(env, LP_NUM_THREADS=args.ref_threads),
@@ -221,6 +310,8 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     for s in vk.samplers:
         vk.render(scene, runs, "warmup-" + s, wh + ["--sampler", s, "--spp", 1, "-o", "warmup.pfm"], env)
     vk.render(scene, runs, "warmup-full", wh + ["--variant", "full", "--spp", 1, "-o", "warmup.pfm"], env)
+    if {"curves", "denoise"} & args.parts:  # the feature images' variant and the denoiser's pipelines
+        vk.render(scene, runs, "warmup-denoise", wh + ["--spp", 2, "--denoise", "-o", "warmup.pfm"], env)
     cold_dir = os.path.join(runs, "cold-shader-cache")
     shutil.rmtree(cold_dir, ignore_errors=True)
     os.makedirs(cold_dir)
@@ -230,32 +321,49 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     res["ttfp"] = {"cold": cold["seconds_to_first_sample"], "cold_jit": cold["seconds_first_batch"],
                    "warm": warm["seconds_to_first_sample"], "warm_jit": warm["seconds_first_batch"]}
     startup = warm["seconds_to_first_sample"]
-    # Curves: one run per sampler; --time counts from process start, so the start-up is added.
+    # Curves: one run per sampler; --time counts from process start, so the start-up is added. With
+    # the denoise part, one more run of the default sampler ("<sampler> --denoise") denoises at every
+    # log row (not in its `seconds`): the denoised curve, beside the raw curve of the same run (its
+    # kernel gathers the feature images, so its raw curve is the AOV variant's; the plain runs keep
+    # the plain variant's rates).
     curve_time = (args.curve_seconds or cfg["curve"]) + startup
     curves, samplers, rows_total, ck_seconds, wall = {}, {}, 0, 0.0, 0.0
-    for s in (vk.samplers if "curves" in args.parts else []):
-        logf = os.path.join(runs, "curve-%s.csv" % s)
-        st = vk.render(scene, runs, "curve-" + s, wh + ["--sampler", s, "--spp", BIG_SPP, "--time", "%.3f" % curve_time,
-                                                        "--reference", ref["path"], "--error-log", logf,
-                                                        "-o", "curve-%s.pfm" % s], env)
-        rows = vkrun.read_error_log(logf)
-        for r in rows:
-            r["ref_limited"] = ref["floor_relmse"] > LIMITED_FRACTION * r["relmse"]
-        curves[s] = rows
+    curve_runs = [(s, s, []) for s in vk.samplers] if "curves" in args.parts else []
+    if curve_runs and "denoise" in args.parts:
+        curve_runs.append((vk.default_sampler + " --denoise", vk.default_sampler, ["--denoise"]))
+    for label, s, denoise in curve_runs:
+        tag = "curve-" + label.replace(" --", "-")
+        logf = os.path.join(runs, tag + ".csv")
+        st = vk.render(scene, runs, tag, wh + ["--sampler", s, "--spp", BIG_SPP, "--time", "%.3f" % curve_time,
+                                               "--reference", ref["path"], "--error-log", logf,
+                                               "-o", tag + ".pfm"] + denoise, env)
+        rows = mark_limited(vkrun.read_error_log(logf), ref["floor_relmse"])
+        curves[label] = rows
         rows_total += st["checkpoints"]
-        ck_seconds += st["seconds_checkpoints"]
+        # seconds_checkpoints includes the denoising at the rows: the error-log overhead leaves it out.
+        ck_seconds += st["seconds_checkpoints"] - sum(r.get("denoise_seconds", 0.0) for r in rows)
         wall += st["seconds_total"]
-        samplers[s] = {"samples_per_second": steady(st), "rays_per_second": st["rays_per_second_steady"],
-                       "spp": st["spp"], "seconds": st["seconds_total"], "relmse": rows[-1]["relmse"],
-                       "rmse": rows[-1]["rmse"], "crossings": crossings(rows, ref["floor_relmse"], startup)}
+        # Extrapolations start at this run's own first sample (a separate warm run's start-up can
+        # come later than this run's last point on a loaded machine).
+        samplers[label] = {"samples_per_second": steady(st), "rays_per_second": st["rays_per_second_steady"],
+                           "spp": st["spp"], "seconds": st["seconds_total"], "relmse": rows[-1]["relmse"],
+                           "rmse": rows[-1]["rmse"],
+                           "crossings": crossings(rows, ref["floor_relmse"], st["seconds_to_first_sample"] or startup),
+                           "variant": st["variant"]}
+        if denoise and not vkrun.has_denoised(rows):
+            failures.append("%s/%s: --denoise but the error log has no denoised columns" % (name, label))
+        elif denoise:
+            samplers[label].update(relmse_denoised=rows[-1]["relmse_denoised"],
+                                   denoise_seconds=rows[-1]["denoise_seconds"],
+                                   crossings_denoised=denoised_crossings(rows, ref["floor_relmse"]))
         for bad in ("nonfinite_samples", "loop_guard_paths"):
             if st[bad]:
-                failures.append("%s/%s: %d %s" % (name, s, st[bad], bad))
+                failures.append("%s/%s: %d %s" % (name, label, st[bad], bad))
         # An unbiased estimator's relMSE falls ~1/spp: over >= 64x the spp it must fall at least 4x.
         first, last = rows[0], rows[-1]
         if last["spp"] >= 64 * first["spp"] and not last["relmse"] < first["relmse"] / 4:
             failures.append("%s/%s: relMSE %.3g at %d spp, %.3g at %d spp: not converging" %
-                            (name, s, first["relmse"], first["spp"], last["relmse"], last["spp"]))
+                            (name, label, first["relmse"], first["spp"], last["relmse"], last["spp"]))
     res["samplers"] = samplers
     res["overhead"] = {"rows": rows_total, "seconds": ck_seconds, "wall": wall}
     if "scaling" in args.parts:
@@ -275,6 +383,8 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     if "settings" in args.parts:
         res["settings"] = bench_settings(vk, scene, runs, wh, ref, "%.3f" % ((args.settings_seconds or cfg["settings"])
                                                                            + startup), env, name, failures, args.settings)
+    if "denoise" in args.parts:
+        res["denoise"] = bench_denoise(vk, scene, runs, wh, ref, env, name, failures)
     if curves:
         report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
     return res, curves
@@ -413,7 +523,8 @@ def main():
                     "load_before": load_before, "load_after": load_average()},
         "error_log_overhead": {"rows": rows, "seconds_per_row": secs / rows if rows else 0.0,
                                "fraction": secs / wall if wall else 0.0},
-        "parts": sorted(args.parts), "scenes": scenes, "failures": failures, "seconds": time.monotonic() - t0,
+        "parts": sorted(args.parts), "denoised_note": report.BIAS_SENTENCE, "scenes": scenes, "failures": failures,
+        "seconds": time.monotonic() - t0,
     }
     ratios = ["%s %.2fx" % (s["name"], s["embree"]["ratio"]) for s in scenes if "ratio" in s.get("embree", {})]
     if ratios:

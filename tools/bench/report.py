@@ -6,11 +6,23 @@ import math
 import os
 
 CURVE_COLUMNS = ["scene", "sampler", "setting", "spp", "seconds", "rmse", "relmse", "relmse_minus_floor",
-                 "rmse_minus_floor", "ref_limited", "mean_r", "mean_g", "mean_b"]
+                 "rmse_minus_floor", "ref_limited", "mean_r", "mean_g", "mean_b", "rmse_denoised", "relmse_denoised",
+                 "denoise_seconds", "ref_limited_denoised"]
+BIAS_SENTENCE = ("The denoised image is biased (its error does not go to zero as spp grows); the raw image is "
+                 "unbiased.")
+
+
+def denoised_cells(r):
+    """The denoised columns of a curve row: empty where the run did not denoise."""
+    if "relmse_denoised" not in r:
+        return ["", "", "", ""]
+    return ["%.9g" % r["rmse_denoised"], "%.9g" % r["relmse_denoised"], "%.6f" % r["denoise_seconds"],
+            int(r["ref_limited_denoised"])]
 
 
 def write_curves_csv(path, scene, curves, ref):
-    """curves: {sampler: [row dicts of the error log, with "ref_limited"]}."""
+    """curves: {sampler: [row dicts of the error log, with "ref_limited" (and "ref_limited_denoised"
+    where the log has the denoised columns)]}."""
     tmp = path + ".tmp"
     with open(tmp, "w", newline="") as f:
         w = csv.writer(f)
@@ -20,7 +32,8 @@ def write_curves_csv(path, scene, curves, ref):
                 w.writerow([scene, sampler, "auto", r["spp"], "%.6f" % r["seconds"], "%.9g" % r["rmse"],
                             "%.9g" % r["relmse"], "%.9g" % (r["relmse"] - ref["floor_relmse"]),
                             "%.9g" % math.sqrt(max(r["rmse"] ** 2 - ref["floor_mse"], 0.0)),
-                            int(r["ref_limited"]), "%.9g" % r["mean_r"], "%.9g" % r["mean_g"], "%.9g" % r["mean_b"]])
+                            int(r["ref_limited"]), "%.9g" % r["mean_r"], "%.9g" % r["mean_g"], "%.9g" % r["mean_b"]]
+                           + denoised_cells(r))
     os.replace(tmp, path)
 
 
@@ -106,6 +119,8 @@ def write_summary_md(path, run):
              "2 threads. Scaling columns: steady samples/s with LP_NUM_THREADS=2 over LP_NUM_THREADS=1, and "
              "`--variant auto` over `--variant full` (both 2 threads, default sampler %s)." % run["default_sampler"])
     L.append("")
+    if any(s.get("denoise") or denoised_sampler(s) for s in run["scenes"] if not s.get("skipped")):
+        write_denoise_md(L, [s for s in run["scenes"] if not s.get("skipped")], thr, run["default_sampler"])
     embree_rows = [s for s in run["scenes"] if s.get("embree")]
     if embree_rows:
         write_embree_md(L, embree_rows, run["default_sampler"])
@@ -140,6 +155,68 @@ def write_summary_md(path, run):
     os.replace(path + ".tmp", path)
 
 
+def denoised_sampler(scene):
+    """(name, numbers) of the scene's sampler whose curve run denoised, or None."""
+    return next(((n, c) for n, c in (scene.get("samplers") or {}).items() if "crossings_denoised" in c), None)
+
+
+def fmt_rel(x, limited):
+    """A relMSE, "*" when reference-limited; "—" for None."""
+    return "—" if x is None else "%.3g%s" % (x, "*" if limited else "")
+
+
+def fmt_met(ok):
+    return "met" if ok else "not met"
+
+
+def write_denoise_md(L, scenes, thresholds, sampler):
+    """The "Denoiser" section: per scene, the time to each relMSE threshold of the raw and the denoised
+    image (the default sampler's curve run), and the denoise part's renders at 16 and 64 spp: raw and
+    denoised relMSE, their ratio against the 0.1 target, the denoiser's seconds against the time of
+    4 spp (target: at most 1). Targets are reported as met or not met."""
+    L.append("## Denoiser")
+    L.append("")
+    L.append(BIAS_SENTENCE)
+    L.append("")
+    crossing_rows = [(s, denoised_sampler(s)) for s in scenes if denoised_sampler(s)]
+    if crossing_rows:
+        L.append("Time to relMSE, raw and denoised, from the same `--denoise` curve run of the default sampler (%s): "
+                 "the denoised image is ready at the row's seconds plus the denoiser's. Denoised times are measured "
+                 "crossings only (interpolated between logged points); the denoised error need not fall ~1/t, so "
+                 "it is never extrapolated. `--denoise` compiles the feature images into the kernel (variant "
+                 "`aov`), so this raw curve includes their cost." % sampler)
+        L.append("")
+        L.append("| scene | sampler | %s |" % " | ".join("t(relMSE ≤ %g) raw | denoised" % t for t in thresholds))
+        L.append("|---|---|" + "---|---|" * len(thresholds))
+        for s, (name, c) in crossing_rows:
+            L.append("| %s | %s | %s |" % (s["name"], name, " | ".join(
+                "%s | %s" % (fmt_cross(c["crossings"][str(t)]), fmt_cross(c["crossings_denoised"][str(t)]))
+                for t in thresholds)))
+        L.append("")
+    spp_rows = [s for s in scenes if s.get("denoise")]
+    if spp_rows:
+        d0 = spp_rows[0]["denoise"]
+        L.append("Renders of exactly N spp (%s, `--denoise`, no `--time`) against the reference. Target (issue 17): "
+                 "denoised relMSE / raw relMSE ≤ %g, and the denoiser's own time ≤ the time of %d spp at the same "
+                 "size (steady rate of a %d-spp render without `--denoise`: the first batch's JIT left out). "
+                 "*: reference-limited (the reference's floor is over 20 %% of the error; the ratio then "
+                 "overstates the denoised error)." % (sampler, d0["target"], d0["time_spp"], d0["time_spp"]))
+        L.append("")
+        L.append("| scene | size | spp | raw relMSE | denoised relMSE | denoised / raw | ≤ %g | denoise s | %d-spp s "
+                 "| denoise / %d spp |" % (d0["target"], d0["time_spp"], d0["time_spp"]))
+        L.append("|---|---|---|---|---|---|---|---|---|---|")
+        for s in spp_rows:
+            d = s["denoise"]
+            for r in d["runs"]:
+                L.append("| %s | %s | %d | %s | %s | %s | %s | %.3g | %.3g | %s (%s) |" % (
+                    s["name"], s["size"], r["spp"], fmt_rel(r["relmse"], r["ref_limited"]),
+                    fmt_rel(r["relmse_denoised"], r["ref_limited_denoised"]),
+                    "—" if r["ratio"] is None else "%.3f" % r["ratio"], fmt_met(r["target_met"]),
+                    r["denoise_seconds"], d["seconds_4spp"],
+                    "—" if r["time_ratio"] is None else "%.2f" % r["time_ratio"], fmt_met(r["time_target_met"])))
+        L.append("")
+
+
 def write_embree_md(L, scenes, sampler):
     """The "Ratio to Embree" section: per scene, vkpath's and the Embree reference's rays/s in the
     same run (same size, thread count and render time, one after the other) and their ratio."""
@@ -172,8 +249,24 @@ def write_summary_json(path, run):
     os.replace(path + ".tmp", path)
 
 
+def plot_denoised(ax, pts, color, sampler):
+    """The denoised curve of a run that denoised (points at seconds + denoise_seconds): dashed, in the
+    sampler's colour; reference-limited points hollow."""
+    pts = [p for p in pts if "relmse_denoised" in p]
+    good = [(p["seconds"] + p["denoise_seconds"], p["relmse_denoised"]) for p in pts if not p["ref_limited_denoised"]]
+    limited = [(p["seconds"] + p["denoise_seconds"], p["relmse_denoised"]) for p in pts if p["ref_limited_denoised"]]
+    label = sampler + " denoised (biased)"
+    if good and limited:
+        limited.insert(0, good[-1])  # the hollow part continues the solid one
+    if good:
+        ax.loglog(*zip(*good), "s--", color=color, ms=3, label=label)
+    if limited:
+        ax.loglog(*zip(*limited), "s--", color=color, ms=3, mfc="none", alpha=0.6, label=None if good else label)
+
+
 def plot(path, run, curves_by_scene):
-    """Log-log relMSE against seconds, one panel per scene, one line per sampler."""
+    """Log-log relMSE against seconds, one panel per scene, one line per sampler, and the denoised
+    curve (dashed) of the sampler whose run denoised."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -196,6 +289,7 @@ def plot(path, run, curves_by_scene):
             if limited:
                 ax.loglog(*zip(*limited), "o:", color=color, ms=3, mfc="none", alpha=0.6,
                           label=None if good else sampler)
+            plot_denoised(ax, pts, color, sampler)
         ax.axhline(s["reference"]["floor_relmse"], color="k", ls="--", lw=0.8,
                    label="reference floor (%d spp)" % s["reference"]["spp"])
         for t in run["thresholds"]:
@@ -207,8 +301,9 @@ def plot(path, run, curves_by_scene):
         ax.legend(fontsize=8)
     for ax in list(axes.flat)[len(scenes):]:
         ax.axis("off")
-    fig.suptitle("vkpath %s, %s (%s): relMSE against time; hollow = reference-limited" %
-                 (run["vkpath_version"], run["machine"]["device"], run["mode"]), fontsize=10)
+    fig.suptitle("vkpath %s, %s (%s): relMSE against time\nhollow = reference-limited; dashed = denoised "
+                 "(biased; the raw image is not)" % (run["vkpath_version"], run["machine"]["device"], run["mode"]),
+                 fontsize=10)
     fig.tight_layout()
     fig.savefig(path + ".tmp.png", dpi=110)
     plt.close(fig)

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Unit tests of the benchmark harness's arithmetic (no vkpath run): PFM round trip, metrics, the
 reference noise-floor estimate, threshold crossings, the sampler list of `vkpath --help`, the
-comparison of the Embree reference's image with vkpath's and the "Ratio to Embree" table.
+comparison of the Embree reference's image with vkpath's and the "Ratio to Embree" table, error logs
+with and without the denoised columns, the denoised image's crossings and the "Denoiser" tables.
 Run: /usr/bin/python3 tools/bench/test_bench.py (CTest: bench_harness, label bench)."""
 import os
 import sys
@@ -15,6 +16,10 @@ except ImportError as e:
     sys.exit(77)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+try:
+    import bench  # noqa: E402  (exits 77 without python3-matplotlib)
+except SystemExit:
+    bench = None
 import embree  # noqa: E402
 import metrics  # noqa: E402
 import pfm  # noqa: E402
@@ -136,6 +141,147 @@ class EmbreeReportTest(unittest.TestCase):
         self.assertIn("## Ratio to Embree", text)
         self.assertIn("| cornell-classic | 64x64 | 2 | 5 M | 10 M | **0.50x** | 4.570 / 4.560 | 400 / 900 | 0.7 |", text)
         self.assertIn("| env-sky | 96x54 | | | refused: an environment map: not supported |", text)
+
+
+RAW_LOG = """spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
+1,4.959290,0.568653892,0.264086336,0.168121367,0.147849276,0.135076589
+2,4.966834,0.262297039,0.144674988,0.170822742,0.151613332,0.138137519
+"""
+DENOISED_LOG = """spp,seconds,rmse,relmse,mean_r,mean_g,mean_b,rmse_denoised,relmse_denoised,denoise_seconds
+1,4.959290,0.568653892,0.264086336,0.168121367,0.147849276,0.135076589,0.568653892,0.264086339,0.007141
+2,4.966834,0.262297039,0.144674988,0.170822742,0.151613332,0.138137519,0.259448097,0.0191623866,0.005604
+"""
+
+
+class ErrorLogTest(unittest.TestCase):
+    def read(self, text):
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, "log.csv")
+            with open(p, "w") as f:
+                f.write(text)
+            return vkrun.read_error_log(p)
+
+    def test_without_denoised_columns(self):
+        rows = self.read(RAW_LOG)
+        self.assertEqual([r["spp"] for r in rows], [1, 2])
+        self.assertIsInstance(rows[1]["spp"], int)
+        self.assertAlmostEqual(rows[1]["relmse"], 0.144674988)
+        self.assertNotIn("relmse_denoised", rows[0])
+        self.assertFalse(vkrun.has_denoised(rows))
+
+    def test_with_denoised_columns(self):
+        rows = self.read(DENOISED_LOG)
+        self.assertTrue(vkrun.has_denoised(rows))
+        self.assertAlmostEqual(rows[1]["relmse_denoised"], 0.0191623866)
+        self.assertAlmostEqual(rows[1]["rmse_denoised"], 0.259448097)
+        self.assertAlmostEqual(rows[0]["denoise_seconds"], 0.007141)
+        self.assertAlmostEqual(rows[1]["relmse"], 0.144674988)  # the raw columns are unchanged
+
+    def test_missing_columns_are_an_error(self):
+        with self.assertRaises(vkrun.VkpathError):  # only some of the denoised columns
+            self.read(DENOISED_LOG.replace(",denoise_seconds\n", "\n").replace(",0.007141\n", "\n")
+                      .replace(",0.005604\n", "\n"))
+        with self.assertRaises(vkrun.VkpathError):  # no relmse
+            self.read("spp,seconds,rmse\n1,1.0,0.5\n")
+
+
+def denoised_row(spp, seconds, relmse, relmse_denoised, denoise_seconds=0.01):
+    return {"spp": spp, "seconds": seconds, "relmse": relmse, "relmse_denoised": relmse_denoised,
+            "denoise_seconds": denoise_seconds}
+
+
+@unittest.skipIf(bench is None, "bench.py needs python3-matplotlib")
+class DenoisedCrossingsTest(unittest.TestCase):
+    def test_measured_crossing_at_ready_time(self):
+        # Crosses 1e-2 between the 2nd and 3rd points, interpolated in log-log at seconds + denoise_seconds.
+        rows = bench.mark_limited([denoised_row(1, 1.0, 0.5, 0.1), denoised_row(2, 2.0, 0.25, 0.02, 0.5),
+                                   denoised_row(4, 4.0, 0.12, 0.005, 0.5)], 1e-6)
+        c = bench.denoised_crossings(rows, 1e-6)
+        self.assertEqual(c["0.01"]["how"], "measured")
+        self.assertAlmostEqual(c["0.01"]["seconds"], metrics.interpolate_crossing([(2.5, 0.02), (4.5, 0.005)], 1e-2))
+        self.assertGreater(c["0.01"]["seconds"], 2.5)
+
+    def test_no_extrapolation(self):
+        # A biased curve that flattens at 5e-3: 1e-3 is "not reached", though a ~1/t extrapolation of the
+        # last point would give a time (the raw crossings() does extrapolate).
+        rows = bench.mark_limited([denoised_row(1, 1.0, 0.5, 0.02), denoised_row(2, 2.0, 0.25, 0.006),
+                                   denoised_row(4, 4.0, 0.12, 0.005)], 1e-6)
+        c = bench.denoised_crossings(rows, 1e-6)
+        self.assertEqual(c["0.001"], {"seconds": None, "how": "not reached"})
+        self.assertEqual(bench.crossings(rows, 1e-6, 0.5)["0.001"]["how"], "extrapolated")
+
+    def test_reference_limited(self):
+        # Floor 1e-3: a denoised point at 3e-3 is reference-limited (1e-3 > 0.2 * 3e-3) and not used;
+        # the 1e-3 threshold is below 5x the floor: it cannot be measured at all.
+        rows = bench.mark_limited([denoised_row(1, 1.0, 0.5, 0.02), denoised_row(2, 2.0, 0.25, 0.003)], 1e-3)
+        self.assertEqual([r["ref_limited_denoised"] for r in rows], [False, True])
+        self.assertEqual([r["ref_limited"] for r in rows], [False, False])
+        c = bench.denoised_crossings(rows, 1e-3)
+        self.assertEqual(c["0.01"], {"seconds": None, "how": "not reached"})
+        self.assertEqual(c["0.001"]["how"], "reference-limited")
+
+    def test_mark_limited_without_denoised_columns(self):
+        rows = bench.mark_limited([{"spp": 1, "seconds": 1.0, "relmse": 1e-3}], 1e-3)
+        self.assertTrue(rows[0]["ref_limited"])
+        self.assertNotIn("ref_limited_denoised", rows[0])
+
+
+@unittest.skipIf(bench is None, "bench.py needs python3-matplotlib")
+class DenoiseReportTest(unittest.TestCase):
+    def scene(self):
+        row16 = bench.denoise_result(16, denoised_row(16, 5.0, 0.016, 0.0012, 0.0055), 1e-5, 0.011)
+        row64 = bench.denoise_result(64, denoised_row(64, 5.1, 0.004, 0.0008, 0.022), 2e-4, 0.011)
+        return {"name": "cornell-classic", "size": "64x64",
+                "samplers": {"mis": {"crossings": {"0.01": {"seconds": 5.2, "how": "measured"},
+                                                   "0.001": {"seconds": 40.0, "how": "extrapolated"}},
+                                     "crossings_denoised": {"0.01": {"seconds": 5.01, "how": "measured"},
+                                                            "0.001": {"seconds": None, "how": "not reached"}}}},
+                "denoise": {"time_spp": 4, "seconds_4spp": 0.011, "seconds_4spp_render": 0.02, "target": 0.1,
+                            "runs": [row16, row64]}}
+
+    def test_result(self):
+        r16, r64 = self.scene()["denoise"]["runs"]
+        self.assertAlmostEqual(r16["ratio"], 0.075)
+        self.assertTrue(r16["target_met"])
+        self.assertAlmostEqual(r16["time_ratio"], 0.5)
+        self.assertTrue(r16["time_target_met"])
+        self.assertAlmostEqual(r64["ratio"], 0.2)
+        self.assertFalse(r64["target_met"])
+        self.assertFalse(r64["time_target_met"])
+        self.assertTrue(r64["ref_limited_denoised"])   # 2e-4 > 0.2 * 8e-4
+        self.assertFalse(r64["ref_limited"])
+
+    def test_tables(self):
+        lines = []
+        report.write_denoise_md(lines, [self.scene(), {"name": "env-sky", "size": "96x54", "samplers": {}}],
+                                [1e-2, 1e-3], "mis")
+        text = "\n".join(lines)
+        self.assertIn("## Denoiser", text)
+        self.assertIn("The denoised image is biased (its error does not go to zero as spp grows); the raw image is "
+                      "unbiased.", text)
+        self.assertIn("| scene | sampler | t(relMSE ≤ 0.01) raw | denoised | t(relMSE ≤ 0.001) raw | denoised |", text)
+        self.assertIn("| cornell-classic | mis | 5.2 s | 5.01 s | ≈ 40 s (extrap.) | n/a (not reached) |", text)
+        self.assertIn("| scene | size | spp | raw relMSE | denoised relMSE | denoised / raw | ≤ 0.1 | denoise s | 4-spp s "
+                      "| denoise / 4 spp |", text)
+        self.assertIn("| cornell-classic | 64x64 | 16 | 0.016 | 0.0012 | 0.075 | met | 0.0055 | 0.011 | 0.50 (met) |", text)
+        self.assertIn("| cornell-classic | 64x64 | 64 | 0.004 | 0.0008* | 0.200 | not met | 0.022 | 0.011 | 2.00 (not met) |",
+                      text)
+        self.assertNotIn("env-sky", text)  # no denoised numbers: no row
+
+
+class CurvesCsvTest(unittest.TestCase):
+    def test_denoised_columns(self):
+        raw = {"spp": 1, "seconds": 1.0, "rmse": 0.5, "relmse": 0.25, "mean_r": 0.1, "mean_g": 0.2, "mean_b": 0.3,
+               "ref_limited": False}
+        den = dict(raw, rmse_denoised=0.1, relmse_denoised=0.02, denoise_seconds=0.005, ref_limited_denoised=True)
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, "c.csv")
+            report.write_curves_csv(p, "s", {"bsdf": [raw], "mis": [den]}, {"floor_relmse": 0.0, "floor_mse": 0.0})
+            with open(p) as f:
+                lines = f.read().splitlines()
+        self.assertTrue(lines[0].endswith(",rmse_denoised,relmse_denoised,denoise_seconds,ref_limited_denoised"))
+        self.assertTrue(lines[1].endswith(",0.3,,,,"))
+        self.assertTrue(lines[2].endswith(",0.3,0.1,0.02,0.005000,1"))
 
 
 if __name__ == "__main__":

@@ -44,15 +44,36 @@ def parse_samplers(help_text):
     raise VkpathError("cannot find the --sampler line in `vkpath --help`")
 
 
+ERROR_LOG_COLUMNS = ("spp", "seconds", "rmse", "relmse", "mean_r", "mean_g", "mean_b")
+# Written with --denoise: the denoised image's errors and the denoiser's seconds at that row (the
+# denoised image is ready at seconds + denoise_seconds; `seconds` leaves the denoising out).
+DENOISED_COLUMNS = ("rmse_denoised", "relmse_denoised", "denoise_seconds")
+
+
 def read_error_log(path):
-    """Rows of an --error-log CSV as dicts of floats (spp as int)."""
+    """Rows of an --error-log CSV as dicts of floats (spp as int). The denoised columns are optional:
+    present in every row or in none. Raises VkpathError when a column is missing, or only some of
+    the denoised ones are there."""
     rows = []
     with open(path, newline="") as f:
-        for r in csv.DictReader(f):
+        reader = csv.DictReader(f)
+        columns = set(reader.fieldnames or ())
+        missing = [c for c in ERROR_LOG_COLUMNS if c not in columns]
+        denoised = [c for c in DENOISED_COLUMNS if c in columns]
+        if denoised and len(denoised) != len(DENOISED_COLUMNS):
+            missing += [c for c in DENOISED_COLUMNS if c not in columns]
+        if missing:
+            raise VkpathError("%s: no column %s" % (path, ", ".join(missing)))
+        for r in reader:
             row = {k: float(v) for k, v in r.items()}
             row["spp"] = int(row["spp"])
             rows.append(row)
     return rows
+
+
+def has_denoised(rows):
+    """Whether error-log rows carry the denoised columns (a log written with --denoise)."""
+    return bool(rows) and all(c in rows[0] for c in DENOISED_COLUMNS)
 
 
 class Vkpath:
