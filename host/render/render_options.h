@@ -70,6 +70,11 @@ struct RenderOptions {
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;
+    /// Automatic samples per dispatch also keep the slowest dispatch (device timestamps) at about
+    /// this many seconds. < 0: Renderer::kTargetDispatchSeconds on a GPU, no time limit on a CPU
+    /// device (lavapipe: no watchdog, and fewer, longer dispatches are faster: measured,
+    /// docs/performance.md "Dispatch size"); 0: no time limit.
+    double targetDispatchSeconds = -1.0;
     /// Adaptive sampling (render/adaptive.h): a pixel stops receiving samples once its estimated
     /// relative standard error is <= this (0 = off: every pixel gets every sample).
     double adaptiveThreshold = 0.0;

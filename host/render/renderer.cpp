@@ -85,6 +85,10 @@ struct Renderer::Impl {
     std::vector<vk::raii::BufferView> views;  ///< the texel buffers' views
     std::unique_ptr<ComputePipeline> pipeline;
     GpuBuffer& counters() { return *shared.at(VKP_BINDING_COUNTERS); }
+    /// Timestamps around every dispatch of a submission (submitSamples); grown on demand. Null
+    /// where the compute queue has no timestamps (DeviceInfo::timestampValidBits 0).
+    vk::raii::QueryPool timestamps{nullptr};
+    std::uint32_t timestampCapacity = 0;
 };
 
 Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOptions& options, const DeviceLimits* limits)
@@ -95,6 +99,9 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
       height_(arrays.height),
       spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1),
       autoSpd_(options.samplesPerDispatch == 0),
+      targetDispatch_(options.targetDispatchSeconds >= 0.0 ? options.targetDispatchSeconds
+                      : device.info().kind == DeviceKind::Cpu ? 0.0
+                                                           : kTargetDispatchSeconds),
       linearTiles_(options.linearTiles),
       sceneBytes_(arrays.sceneBytes()),
       active_(arrays.width * arrays.height),
@@ -185,6 +192,18 @@ void Renderer::submitSamples(std::uint32_t count) {
     const std::uint32_t perGroup = features_.workgroupX * features_.workgroupY;
     const std::uint32_t groupsX = (width_ + features_.workgroupX - 1) / features_.workgroupX;
     std::uint32_t dispatches = 0;
+    // Device timestamps before the first dispatch and after each (each dispatch ends in a barrier,
+    // ComputePipeline::recordDispatch): what every dispatch took on the device.
+    const DeviceInfo& info = dev_->info();
+    const bool timed = info.timestampValidBits > 0 && info.timestampPeriodNs > 0.0;
+    const std::uint32_t planned = std::uint32_t(impl_->bands.size()) * ((count + spd_ - 1) / spd_);
+    if (timed && impl_->timestampCapacity < planned + 1) {
+        impl_->timestampCapacity = std::max(planned + 1, 2 * impl_->timestampCapacity);
+        vk::QueryPoolCreateInfo qi{};
+        qi.queryType = vk::QueryType::eTimestamp;
+        qi.queryCount = impl_->timestampCapacity;
+        impl_->timestamps = vk::raii::QueryPool(dev_->device(), qi);
+    }
     const auto t0 = std::chrono::steady_clock::now();
     try {
         if (++submissions_ == injectDeviceLostAt_) throw vk::DeviceLostError("vkQueueSubmit (injected by VKPATH_INJECT_DEVICE_LOST)");
@@ -195,6 +214,10 @@ void Renderer::submitSamples(std::uint32_t count) {
             mb.dstAccessMask = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite;
             cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, mb,
                                 nullptr, nullptr);
+            if (timed) {
+                cmd.resetQueryPool(*impl_->timestamps, 0, planned + 1);
+                cmd.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, *impl_->timestamps, 0);
+            }
             for (std::uint32_t set = 0; set < impl_->bands.size(); ++set) {
                 const Impl::BandBuffers& bb = impl_->bands[set];
                 gpu::GpuPush push{};
@@ -214,6 +237,7 @@ void Renderer::submitSamples(std::uint32_t count) {
                     push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
                     impl_->pipeline->recordDispatch(cmd, dispatchX, dispatchY, &push, sizeof(push), set);
                     ++dispatches;
+                    if (timed) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *impl_->timestamps, dispatches);
                 }
             }
         });
@@ -221,7 +245,19 @@ void Renderer::submitSamples(std::uint32_t count) {
         throw VulkanError(std::string("rendering failed: ") + e.what());
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (submissions_ > 1 && dispatches > 0) longestDispatch_ = std::max(longestDispatch_, seconds / dispatches);
+    double slowest = dispatches > 0 ? seconds / dispatches : 0.0;  // without timestamps: the mean
+    if (timed && dispatches > 0) {
+        const auto [result, ticks] = impl_->timestamps.getResults<std::uint64_t>(
+            0, dispatches + 1, sizeof(std::uint64_t) * (dispatches + 1), sizeof(std::uint64_t),
+            vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+        if (result == vk::Result::eSuccess) {
+            const std::uint64_t mask = info.timestampValidBits >= 64 ? ~0ull : (1ull << info.timestampValidBits) - 1;
+            slowest = 0.0;
+            for (std::uint32_t k = 0; k < dispatches; ++k)
+                slowest = std::max(slowest, double((ticks[k + 1] - ticks[k]) & mask) * info.timestampPeriodNs * 1e-9);
+        }
+    }
+    if (submissions_ > 1 && dispatches > 0) longestDispatch_ = std::max(longestDispatch_, slowest);
     done_ += count;
     taken_ += std::uint64_t(count) * active_;
     dev_->instance().throwIfValidationMessages("while rendering");
@@ -230,12 +266,17 @@ void Renderer::submitSamples(std::uint32_t count) {
     maxPasses_ = raw[gpu::COUNTER_MAX_PASSES];
     if (autoSpd_) {
         // Passes grow about linearly with the samples per dispatch: aim the busiest invocation at
-        // half of the 60,000-pass guard, at most doubling per step.
+        // half of the 60,000-pass guard; and time does too: on a GPU aim the slowest dispatch
+        // (device timestamps; the first submission's, which holds the shader JIT, left out) at
+        // targetDispatch_, so that no dispatch approaches a watchdog's seconds. At most doubling
+        // per step, 1 to 8 samples.
         constexpr double kTargetPasses = 30000.0;
         const std::uint32_t perDispatch = std::min(spd_, count);
         const double perSample = double(std::max<std::uint32_t>(maxPasses_, 1)) / perDispatch;
-        const auto fit = std::uint32_t(std::clamp(kTargetPasses / perSample, 1.0, 8.0));
-        spd_ = std::clamp<std::uint32_t>(fit, 1, 2 * spd_);
+        double fit = kTargetPasses / perSample;
+        if (timed && targetDispatch_ > 0.0 && submissions_ > 1 && slowest > 0.0)
+            fit = std::min(fit, targetDispatch_ * perDispatch / slowest);
+        spd_ = std::clamp<std::uint32_t>(std::uint32_t(std::clamp(fit, 1.0, 8.0)), 1, 2 * spd_);
     }
 }
 

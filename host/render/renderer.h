@@ -89,10 +89,13 @@ public:
     std::uint32_t samplesPerDispatch() const { return spd_; }
     /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
     std::uint32_t maxPassesLastBatch() const { return maxPasses_; }
-    /// The longest dispatch so far, in seconds, the first submission's (shader JIT) left out: each
-    /// submission's wall time over the dispatches it held (exact with one dispatch per submission;
-    /// the slowest of several may have taken longer). What a GPU's watchdog would see.
+    /// The longest dispatch so far, in seconds, the first submission's (shader JIT) left out: from
+    /// device timestamps around each dispatch where the compute queue has them (lavapipe does),
+    /// else each submission's wall time over the dispatches it held. What a GPU's watchdog would see.
     double longestDispatchSeconds() const { return longestDispatch_; }
+    /// Automatic samples per dispatch (RenderOptions::samplesPerDispatch 0) aim the slowest
+    /// dispatch at this many seconds: tens of milliseconds, far from any watchdog.
+    static constexpr double kTargetDispatchSeconds = 0.1;
     /// Bands of rows the image is rendered in (1 unless it exceeds the device's binding range).
     std::uint32_t bandCount() const;
 
@@ -113,7 +116,9 @@ private:
     VulkanDevice* dev_;
     Features features_;
     std::uint32_t width_, height_, spd_;
-    bool autoSpd_, linearTiles_;
+    bool autoSpd_;
+    double targetDispatch_;  ///< seconds; 0: no time limit (RenderOptions::targetDispatchSeconds)
+    bool linearTiles_;
     std::uint64_t sceneBytes_ = 0;
     std::uint32_t done_ = 0;
     std::uint32_t first_ = 0;

@@ -30,6 +30,10 @@ struct DeviceInfo {
     std::uint64_t deviceLocalBytes = 0;         ///< size of the largest device-local memory heap
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer
     bool bufferDeviceAddress = false;  ///< VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (optional)
+    /// The compute family's timestampValidBits (0: no timestamps there) and the device's
+    /// timestampPeriod, nanoseconds per tick: what Renderer times its dispatches with.
+    std::uint32_t timestampValidBits = 0;
+    double timestampPeriodNs = 0.0;
 };
 
 /// Empty if the device can run vkpath, else the reason it cannot (one short phrase).

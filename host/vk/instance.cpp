@@ -93,6 +93,8 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
     for (std::uint32_t i = 0; i < families.size(); ++i) {
         if (families[i].queueFlags & vk::QueueFlagBits::eCompute) {
             d.computeQueueFamily = i;
+            d.timestampValidBits = families[i].timestampValidBits;
+            d.timestampPeriodNs = props.limits.timestampPeriod;
             break;
         }
     }

@@ -105,6 +105,33 @@ TEST(GpuRender, BitIdenticalAcrossDispatchSplits) {
     EXPECT_EQ(0, std::memcmp(sa.sumSq.data(), sc.sumSq.data(), sa.sumSq.size() * sizeof(double)));
 }
 
+// Automatic samples per dispatch: on lavapipe (a CPU device: no watchdog) only the loop budget
+// limits them, so a small image reaches 8; a time target of a microsecond (what a GPU's would be to
+// a dispatch far slower than it) holds them at 1, measured from device timestamps, and the sums do
+// not change.
+TEST(GpuRender, DispatchTimeTargetHoldsTheSamplesPerDispatchDown) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
+    scene.camera.width = 16;
+    scene.camera.height = 16;
+    PixelSums sums[2];
+    std::uint32_t spd[2];
+    for (int k = 0; k < 2; ++k) {
+        RenderOptions o;
+        o.targetDispatchSeconds = k == 0 ? -1.0 : 1e-6;
+        TestRender r = makeRender(dev, scene, o);
+        for (int batch = 0; batch < 6; ++batch) r.renderer->addSamples(8);
+        spd[k] = r.renderer->samplesPerDispatch();
+        EXPECT_GT(r.renderer->longestDispatchSeconds(), 0.0);  // timestamps (lavapipe has them) or wall time
+        EXPECT_LT(r.renderer->longestDispatchSeconds(), 5.0);
+        sums[k] = r.renderer->readSums();
+    }
+    EXPECT_EQ(spd[0], 8u) << "lavapipe: the loop budget alone";
+    EXPECT_EQ(spd[1], 1u) << "a target no dispatch can meet";
+    ASSERT_TRUE(litAndNotConstant(sums[0].mean(), "cornell-book3 16x16"));
+    EXPECT_EQ(0, std::memcmp(sums[0].sum.data(), sums[1].sum.data(), sums[0].sum.size() * sizeof(double)));
+}
+
 // The workgroup size and the tile order only change which invocation computes a pixel, never its
 // samples: the sums are bit-identical, with and without adaptive sampling (whose packed list of
 // active pixels is laid out by workgroup size too). 21 x 13 pixels: no size divides it.

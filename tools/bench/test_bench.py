@@ -231,7 +231,7 @@ class DenoiseReportTest(unittest.TestCase):
     def scene(self):
         row16 = bench.denoise_result(16, denoised_row(16, 5.0, 0.016, 0.0012, 0.0055), 1e-5, 0.011)
         row64 = bench.denoise_result(64, denoised_row(64, 5.1, 0.004, 0.0008, 0.022), 2e-4, 0.011)
-        return {"name": "cornell-classic", "size": "64x64",
+        return {"name": "cornell-classic", "size": "64x64", "reference": {"floor_relmse": 2e-4},
                 "samplers": {"mis": {"crossings": {"0.01": {"seconds": 5.2, "how": "measured"},
                                                    "0.001": {"seconds": 40.0, "how": "extrapolated"}},
                                      "crossings_denoised": {"0.01": {"seconds": 5.01, "how": "measured"},
@@ -261,12 +261,22 @@ class DenoiseReportTest(unittest.TestCase):
                       "unbiased.", text)
         self.assertIn("| scene | sampler | t(relMSE ≤ 0.01) raw | denoised | t(relMSE ≤ 0.001) raw | denoised |", text)
         self.assertIn("| cornell-classic | mis | 5.2 s | 5.01 s | ≈ 40 s (extrap.) | n/a (not reached) |", text)
-        self.assertIn("| scene | size | spp | raw relMSE | denoised relMSE | denoised / raw | ≤ 0.1 | denoise s | 4-spp s "
-                      "| denoise / 4 spp |", text)
-        self.assertIn("| cornell-classic | 64x64 | 16 | 0.016 | 0.0012 | 0.075 | met | 0.0055 | 0.011 | 0.50 (met) |", text)
-        self.assertIn("| cornell-classic | 64x64 | 64 | 0.004 | 0.0008* | 0.200 | not met | 0.022 | 0.011 | 2.00 (not met) |",
+        self.assertIn("| scene | size | spp | raw relMSE | denoised relMSE | denoised / raw | floor out | ≤ 0.1 | denoise s "
+                      "| 4-spp s | denoise / 4 spp |", text)
+        self.assertIn("| cornell-classic | 64x64 | 16 | 0.016 | 0.0012 | 0.075 | 0.063 | met | 0.0055 | 0.011 | 0.50 (met) |",
                       text)
+        self.assertIn("| cornell-classic | 64x64 | 64 | 0.004 | 0.0008* | 0.200 | 0.158 | not met | 0.022 | 0.011 "
+                      "| 2.00 (not met) |", text)
         self.assertNotIn("env-sky", text)  # no denoised numbers: no row
+
+
+class FloorCorrectedRatioTest(unittest.TestCase):
+    def test_floor_out(self):
+        self.assertAlmostEqual(report.floor_corrected_ratio(0.0102, 0.0012, 2e-4), 0.1)
+        self.assertAlmostEqual(report.floor_corrected_ratio(0.01, 0.001, 0.0), 0.1)
+        self.assertIsNone(report.floor_corrected_ratio(0.01, 0.0012, 1e-3))  # within 1.25x the floor
+        self.assertIsNone(report.floor_corrected_ratio(1e-3, 2e-3, 1e-3))    # raw at the floor
+        self.assertIsNone(report.floor_corrected_ratio(0.01, 0.001, None))
 
 
 class CurvesCsvTest(unittest.TestCase):
