@@ -5,39 +5,40 @@
 
 namespace vkp {
 
-ComputePipeline::ComputePipeline(VulkanDevice& dev, const ComputePipelineDesc& desc) : dev_(&dev), types_(desc.bindings) {
+namespace {
+
+std::shared_ptr<const SharedPipeline> compile(VulkanDevice& dev, const ComputePipelineDesc& desc) {
     auto& device = dev.device();
+    auto out = std::make_shared<SharedPipeline>();
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
-    std::map<vk::DescriptorType, std::uint32_t> counts;
-    for (std::uint32_t i = 0; i < types_.size(); ++i) {
+    for (std::uint32_t i = 0; i < desc.bindings.size(); ++i) {
         vk::DescriptorSetLayoutBinding b{};
         b.binding = i;
-        b.descriptorType = types_[i];
+        b.descriptorType = desc.bindings[i];
         b.descriptorCount = 1;
         b.stageFlags = vk::ShaderStageFlagBits::eCompute;
         bindings.push_back(b);
-        counts[types_[i]]++;
     }
     vk::DescriptorSetLayoutCreateInfo lci{};
     lci.bindingCount = std::uint32_t(bindings.size());
     lci.pBindings = bindings.data();
-    setLayout_ = vk::raii::DescriptorSetLayout(device, lci);
+    out->setLayout = vk::raii::DescriptorSetLayout(device, lci);
 
     vk::PushConstantRange pcr{};
     pcr.stageFlags = vk::ShaderStageFlagBits::eCompute;
     pcr.size = desc.pushConstantBytes;
     vk::PipelineLayoutCreateInfo plci{};
-    vk::DescriptorSetLayout rawSet = *setLayout_;
+    vk::DescriptorSetLayout rawSet = *out->setLayout;
     plci.setLayoutCount = 1;
     plci.pSetLayouts = &rawSet;
     plci.pushConstantRangeCount = desc.pushConstantBytes ? 1 : 0;
     plci.pPushConstantRanges = &pcr;
-    layout_ = vk::raii::PipelineLayout(device, plci);
+    out->layout = vk::raii::PipelineLayout(device, plci);
 
     vk::ShaderModuleCreateInfo smci{};
     smci.codeSize = desc.spirv.size() * sizeof(std::uint32_t);
     smci.pCode = desc.spirv.data();
-    module_ = vk::raii::ShaderModule(device, smci);
+    out->module = vk::raii::ShaderModule(device, smci);
 
     std::vector<vk::SpecializationMapEntry> entries;
     for (std::uint32_t i = 0; i < desc.specConstants.size(); ++i)
@@ -50,11 +51,38 @@ ComputePipeline::ComputePipeline(VulkanDevice& dev, const ComputePipelineDesc& d
 
     vk::ComputePipelineCreateInfo cpci{};
     cpci.stage.stage = vk::ShaderStageFlagBits::eCompute;
-    cpci.stage.module = *module_;
+    cpci.stage.module = *out->module;
     cpci.stage.pName = "main";
     cpci.stage.pSpecializationInfo = entries.empty() ? nullptr : &si;
-    cpci.layout = *layout_;
-    pipeline_ = vk::raii::Pipeline(device, nullptr, cpci);
+    cpci.layout = *out->layout;
+    out->pipeline = vk::raii::Pipeline(device, nullptr, cpci);
+    return out;
+}
+
+}  // namespace
+
+ComputePipeline::ComputePipeline(VulkanDevice& dev, const ComputePipelineDesc& desc) : dev_(&dev), types_(desc.bindings) {
+    auto& device = dev.device();
+    std::map<vk::DescriptorType, std::uint32_t> counts;
+    for (vk::DescriptorType t : types_) counts[t]++;
+    {
+        CompiledPipelines& cache = dev.compiledPipelines();
+        CompiledPipelines::Key key{std::vector<std::uint32_t>(desc.spirv.begin(), desc.spirv.end()), desc.specConstants, desc.bindings,
+                                   desc.pushConstantBytes};
+        const std::lock_guard<std::mutex> lock(cache.mutex);
+        auto it = cache.pipelines.find(key);
+        if (it == cache.pipelines.end()) {
+            if (cache.pipelines.size() >= CompiledPipelines::kKeep)
+                cache.pipelines.erase(std::min_element(cache.pipelines.begin(), cache.pipelines.end(), [](const auto& a, const auto& b) {
+                    return a.second.lastUse < b.second.lastUse;
+                }));
+            it = cache.pipelines.emplace(std::move(key), CompiledPipelines::Entry{compile(dev, desc), 0}).first;
+            ++cache.compiled;
+        }
+        it->second.lastUse = ++cache.uses;
+        shared_ = it->second.pipeline;
+    }
+    const vk::DescriptorSetLayout rawSet = *shared_->setLayout;
 
     std::vector<vk::DescriptorPoolSize> sizes;
     const std::uint32_t sets = std::max<std::uint32_t>(desc.descriptorSets, 1);
@@ -96,10 +124,10 @@ void ComputePipeline::bindTexelView(std::uint32_t b, vk::BufferView view, std::u
 
 void ComputePipeline::recordDispatch(vk::raii::CommandBuffer& cmd, std::uint32_t groupsX, std::uint32_t groupsY, const void* push,
                                      std::uint32_t pushBytes, std::uint32_t set) const {
-    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
-    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, {*sets_.at(set)}, {});
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *shared_->pipeline);
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *shared_->layout, 0, {*sets_.at(set)}, {});
     if (pushBytes)
-        cmd.pushConstants<std::uint8_t>(*layout_, vk::ShaderStageFlagBits::eCompute, 0,
+        cmd.pushConstants<std::uint8_t>(*shared_->layout, vk::ShaderStageFlagBits::eCompute, 0,
                                         vk::ArrayProxy<const std::uint8_t>(pushBytes, static_cast<const std::uint8_t*>(push)));
     cmd.dispatch(groupsX, groupsY, 1);
     vk::MemoryBarrier mb{};

@@ -1,9 +1,19 @@
 // A compute pipeline with one descriptor-set layout (one or more sets of it), push constants and
 // specialization constants.
 // Used by the path tracer and by the test kernels (shaders/tests/).
+// The compiled pipeline (with its layouts) is shared: a second ComputePipeline on the same device
+// with the same SPIR-V, specialization constants, bindings and push-constant size reuses the
+// first one's (VulkanDevice::compiledPipelines) and only allocates descriptor sets of its own.
+// Lavapipe spends seconds compiling the path tracer's SPIR-V to LLVM and machine code (at the
+// pipeline's creation and its first dispatch), and compiling the same input again gives the same
+// code; the tests build many renderers of one variant in a process.
 #pragma once
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "vk/device.h"
@@ -16,6 +26,31 @@ struct ComputePipelineDesc {
     std::uint32_t pushConstantBytes = 0;
     std::vector<std::uint32_t> specConstants;       ///< constant_id i = specConstants[i] (bool: 0/1)
     std::uint32_t descriptorSets = 1;               ///< sets of the layout to allocate (one per band of the path tracer)
+};
+
+/// A compiled pipeline and its layouts, shared by the ComputePipeline objects built from the same
+/// description (descriptorSets aside).
+struct SharedPipeline {
+    vk::raii::DescriptorSetLayout setLayout{nullptr};
+    vk::raii::PipelineLayout layout{nullptr};
+    vk::raii::ShaderModule module{nullptr};
+    vk::raii::Pipeline pipeline{nullptr};
+};
+
+/// VulkanDevice::compiledPipelines: the pipelines of one device by (SPIR-V words, specialization
+/// constants, binding types, push-constant bytes), the whole SPIR-V compared, not a hash of it.
+/// The kKeep most recently used are kept (a ComputePipeline keeps its own alive in any case).
+struct CompiledPipelines {
+    static constexpr std::size_t kKeep = 16;
+    using Key = std::tuple<std::vector<std::uint32_t>, std::vector<std::uint32_t>, std::vector<vk::DescriptorType>, std::uint32_t>;
+    struct Entry {
+        std::shared_ptr<const SharedPipeline> pipeline;
+        std::uint64_t lastUse = 0;
+    };
+    std::mutex mutex;
+    std::map<Key, Entry> pipelines;
+    std::uint64_t uses = 0;      ///< ComputePipeline objects built
+    std::uint64_t compiled = 0;  ///< pipelines compiled for them (the others were reused)
 };
 
 class ComputePipeline {
@@ -41,10 +76,7 @@ public:
 private:
     VulkanDevice* dev_;
     std::vector<vk::DescriptorType> types_;
-    vk::raii::DescriptorSetLayout setLayout_{nullptr};
-    vk::raii::PipelineLayout layout_{nullptr};
-    vk::raii::ShaderModule module_{nullptr};
-    vk::raii::Pipeline pipeline_{nullptr};
+    std::shared_ptr<const SharedPipeline> shared_;
     vk::raii::DescriptorPool pool_{nullptr};
     std::vector<vk::raii::DescriptorSet> sets_;
 };

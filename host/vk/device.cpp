@@ -1,6 +1,7 @@
 #include "vk/device.h"
 
 #include "core/errors.h"
+#include "vk/compute_pipeline.h"
 
 namespace vkp {
 
@@ -36,6 +37,7 @@ VulkanDevice::VulkanDevice(VulkanInstance& instance, const std::string& selector
     ai.commandBufferCount = 1;
     cmd_ = std::move(vk::raii::CommandBuffers(device_, ai).front());
     fence_ = vk::raii::Fence(device_, vk::FenceCreateInfo{});
+    compiled_ = std::make_shared<CompiledPipelines>();
 }
 
 void VulkanDevice::submitAndWait(const std::function<void(vk::raii::CommandBuffer&)>& record) {

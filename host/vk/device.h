@@ -1,11 +1,14 @@
 // The logical device: one compute queue, a command pool and a fence for submit-and-wait.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "vk/instance.h"
 
 namespace vkp {
+
+struct CompiledPipelines;  // vk/compute_pipeline.h
 
 class VulkanDevice {
 public:
@@ -26,6 +29,11 @@ public:
     std::uint32_t memoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags required,
                              vk::MemoryPropertyFlags preferred = {}) const;
 
+    /// The compute pipelines compiled on this device, by what they were built from
+    /// (vk/compute_pipeline.h): a ComputePipeline of the same SPIR-V, specialization constants,
+    /// bindings and push-constant size as an earlier one reuses its VkPipeline.
+    CompiledPipelines& compiledPipelines() { return *compiled_; }
+
 private:
     VulkanInstance* instance_;
     vk::raii::PhysicalDevice* physical_;
@@ -36,6 +44,7 @@ private:
     vk::raii::CommandBuffer cmd_{nullptr};
     vk::raii::Fence fence_{nullptr};
     vk::PhysicalDeviceMemoryProperties memProps_{};
+    std::shared_ptr<CompiledPipelines> compiled_;  // declared after device_: destroyed before it
 };
 
 }  // namespace vkp

@@ -13,6 +13,7 @@
 #include "render/gpu_arrays.h"
 #include "render_helpers.h"
 #include "test_paths.h"
+#include "vk/compute_pipeline.h"
 
 namespace vkp::test {
 namespace {
@@ -399,6 +400,50 @@ TEST(GpuRender, SceneVariantMatchesFullVariant) {
         EXPECT_TRUE(litAndNotConstant(a.mean(), std::string(name) + ", scene variant"));
         EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double))) << name;
     }
+}
+
+}  // namespace
+}  // namespace vkp::test
+
+namespace vkp::test {
+namespace {
+
+// Renderers of one variant on one device share its compiled pipeline (VulkanDevice::
+// compiledPipelines; lavapipe spends seconds per compile), another variant gets its own, and the
+// shared pipeline renders bit for bit what a pipeline compiled afresh (on a second device, which
+// has its own) renders. Fails if sharing were keyed too loosely (a variant reusing another's code)
+// or if a reused pipeline behaved differently from a fresh one.
+TEST(GpuRender, RenderersOfOneVariantShareTheCompiledPipeline) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");
+    scene.camera.width = 24;
+    scene.camera.height = 16;
+    RenderOptions o;
+    o.samplesPerDispatch = 2;
+    const std::uint64_t before = dev.compiledPipelines().compiled;
+    TestRender first = makeRender(dev, scene, o);
+    EXPECT_EQ(dev.compiledPipelines().compiled, before + 1);
+    first.renderer->addSamples(4);
+    const PixelSums a = first.renderer->readSums();
+    first = TestRender{};  // the cache keeps the pipeline when its renderer is gone
+    TestRender second = makeRender(dev, scene, o);
+    EXPECT_EQ(dev.compiledPipelines().compiled, before + 1) << "same variant: reused";
+    second.renderer->addSamples(4);
+    const PixelSums b = second.renderer->readSums();
+    EXPECT_TRUE(litAndNotConstant(a.mean(), "cornell-book3"));
+    EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)));
+    RenderOptions light = o;
+    light.sampler = Sampler::Light;
+    TestRender other = makeRender(dev, scene, light);
+    EXPECT_EQ(dev.compiledPipelines().compiled, before + 2) << "another sampler: another variant";
+
+    VulkanDevice fresh(*GpuEnv::get().instance(), "");
+    TestRender own = makeRender(fresh, scene, o);
+    EXPECT_EQ(fresh.compiledPipelines().compiled, 1u);
+    own.renderer->addSamples(4);
+    const PixelSums c = own.renderer->readSums();
+    EXPECT_EQ(0, std::memcmp(a.sum.data(), c.sum.data(), a.sum.size() * sizeof(double))) << "shared vs compiled afresh";
+    EXPECT_EQ(0, std::memcmp(a.sumSq.data(), c.sumSq.data(), a.sumSq.size() * sizeof(double)));
 }
 
 }  // namespace
