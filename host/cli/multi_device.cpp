@@ -123,10 +123,7 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     }
     const int signal = interruptSignal();
     std::vector<RenderState> states;
-    for (auto& r : renderers) {
-        states.push_back(r->state());
-        states.back().aovFrame = o.aovFrame;
-    }
+    for (auto& r : renderers) states.push_back(r->state());
     std::vector<const RenderState*> ptrs;
     for (const RenderState& s : states) ptrs.push_back(&s);
     const RenderState total = addStates(ptrs, first, next);

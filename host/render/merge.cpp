@@ -49,39 +49,24 @@ RenderState addStates(const std::vector<const RenderState*>& states, std::uint32
     // and counts, combined as means weighted by their counts, in double.
     if (!states.front()->aov.empty()) {
         const std::size_t n = states.front()->aov.size();
+        // shared/aov.h: floats 3 and 7 are the counts (samples, hits); the position (8-10) is a
+        // mean over the hits, every other float a mean over the samples.
+        const auto countOf = [](std::size_t k) -> std::size_t { return k >= 8 && k < 11 ? 7 : 3; };
+        const auto isCount = [](std::size_t k) { return k == 3 || k == 7; };
         std::vector<double> aov(n, 0.0);
         for (const RenderState* s : states) {
             if (s->aov.size() != n) throw InputError("merge: some parts have feature images (--aov) and some have not");
-            for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel) {
-                const float* a = s->aov.data() + p;
-                const double samples = a[3], hits = a[7];
-                for (int c = 0; c < 3; ++c) {
-                    aov[p + c] += samples * a[c];
-                    aov[p + 4 + c] += samples * a[4 + c];
-                    aov[p + 8 + c] += hits * a[8 + c];
-                    aov[p + 12 + c] += samples * a[12 + c];
-                }
-                aov[p + 11] += samples * a[11];  // the indirect luminance's mean and mean square
-                aov[p + 15] += samples * a[15];
-                aov[p + 3] += samples;
-                aov[p + 7] += hits;
-            }
+            for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel)
+                for (std::size_t k = 0; k < kAovFloatsPerPixel; ++k)
+                    aov[p + k] += isCount(k) ? s->aov[p + k] : double(s->aov[p + countOf(k)]) * s->aov[p + k];
         }
         m.aov.assign(n, 0.0f);
         m.aovFrame = states.front()->aovFrame;  // one render (the key says so): one frame
-        for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel) {
-            const double samples = aov[p + 3], hits = aov[p + 7];
-            for (int c = 0; c < 3; ++c) {
-                m.aov[p + c] = samples > 0.0 ? float(aov[p + c] / samples) : 0.0f;
-                m.aov[p + 4 + c] = samples > 0.0 ? float(aov[p + 4 + c] / samples) : 0.0f;
-                m.aov[p + 8 + c] = hits > 0.0 ? float(aov[p + 8 + c] / hits) : 0.0f;
-                m.aov[p + 12 + c] = samples > 0.0 ? float(aov[p + 12 + c] / samples) : 0.0f;
+        for (std::size_t p = 0; p < n; p += kAovFloatsPerPixel)
+            for (std::size_t k = 0; k < kAovFloatsPerPixel; ++k) {
+                const double count = aov[p + countOf(k)];
+                m.aov[p + k] = isCount(k) ? float(aov[p + k]) : count > 0.0 ? float(aov[p + k] / count) : 0.0f;
             }
-            m.aov[p + 11] = samples > 0.0 ? float(aov[p + 11] / samples) : 0.0f;
-            m.aov[p + 15] = samples > 0.0 ? float(aov[p + 15] / samples) : 0.0f;
-            m.aov[p + 3] = float(samples);
-            m.aov[p + 7] = float(hits);
-        }
     }
     for (const RenderState* s : states) {
         m.samplesTaken += s->samplesTaken;

@@ -37,8 +37,7 @@ struct RenderState {
     /// sums (shared/aov.h).
     std::vector<float> aov;
     /// Feature images only: where their positions are (GpuArrays::aovFrame), so that a file alone
-    /// (`vkpath merge`) can make the position and depth images. Set by whoever takes the state
-    /// (Renderer::state leaves the default).
+    /// (`vkpath merge`) can make the position and depth images.
     AovFrame aovFrame;
 
     std::uint64_t pixels() const { return std::uint64_t(width) * height; }

@@ -89,6 +89,7 @@ struct Renderer::Impl {
     /// where the compute queue has no timestamps (DeviceInfo::timestampValidBits 0).
     vk::raii::QueryPool timestamps{nullptr};
     std::uint32_t timestampCapacity = 0;
+    AovFrame aovFrame;  ///< GpuArrays::aovFrame, for state() (RenderState::aovFrame)
 };
 
 Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOptions& options, const DeviceLimits* limits)
@@ -110,6 +111,7 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
     const DeviceLimits own = deviceLimits(device.info());
     const DeviceLimits& lim = limits ? *limits : own;
     if (const std::string problem = fitProblem(arrays, lim); !problem.empty()) throw DeviceError(problem);
+    impl_->aovFrame = arrays.aovFrame;
     // The read-only buffers once, uploaded; the per-pixel ones per band, zeroed below.
     ComputePipelineDesc desc;
     for (const BufferSize& size : arrays.sizes()) {
@@ -355,7 +357,10 @@ RenderState Renderer::state() {
         downloadPerPixel(impl_->bands, VKP_BINDING_DECISION, width_, st.decision);
         st.active = activeMask_;
     }
-    if (features_.aov) st.aov = readAovSums();
+    if (features_.aov) {
+        st.aov = readAovSums();
+        st.aovFrame = impl_->aovFrame;
+    }
     return st;
 }
 

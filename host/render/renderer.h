@@ -93,8 +93,8 @@ public:
     /// device timestamps around each dispatch where the compute queue has them (lavapipe does),
     /// else each submission's wall time over the dispatches it held. What a GPU's watchdog would see.
     double longestDispatchSeconds() const { return longestDispatch_; }
-    /// Automatic samples per dispatch (RenderOptions::samplesPerDispatch 0) aim the slowest
-    /// dispatch at this many seconds: tens of milliseconds, far from any watchdog.
+    /// On a GPU, automatic samples per dispatch (RenderOptions::samplesPerDispatch 0) aim the
+    /// slowest dispatch at this many seconds: tens of milliseconds, far from any watchdog.
     static constexpr double kTargetDispatchSeconds = 0.1;
     /// Bands of rows the image is rendered in (1 unless it exceeds the device's binding range).
     std::uint32_t bandCount() const;

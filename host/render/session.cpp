@@ -113,13 +113,6 @@ void writeDumps(const Frame& fr, const SessionOptions& o, std::uint32_t spp) {
 }
 }  // namespace
 
-/// The renderer's state with the session's AOV frame (RenderState::aovFrame).
-RenderState stateOf(Renderer& renderer, const SessionOptions& o) {
-    RenderState st = renderer.state();
-    st.aovFrame = o.aovFrame;
-    return st;
-}
-
 std::filesystem::path denoisedPath(const std::filesystem::path& path) {
     std::filesystem::path p = path;
     p.replace_filename(path.stem().string() + ".denoised" + path.extension().string());
@@ -221,7 +214,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
                         now == o.spp || renderer.activePixels() == 0);
         if (!o.checkpoint.empty() && now < o.spp && secondsSince(lastStateWrite) >= o.checkpointEvery && !interruptSignal()) {
             const auto t1 = Clock::now();
-            writeAccumFile(o.checkpoint, o.key, stateOf(renderer, o));
+            writeAccumFile(o.checkpoint, o.key, renderer.state());
             ++res.stateWrites;
             lastStateWrite = Clock::now();
             res.checkpointSeconds += secondsSince(t1);
@@ -244,7 +237,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
     res.signal = interruptSignal();
     // The partial and the checkpoint need the state; read the device once and make the image from it.
     std::shared_ptr<const RenderState> state;
-    if (!o.partial.empty() || !o.checkpoint.empty()) state = std::make_shared<const RenderState>(stateOf(renderer, o));
+    if (!o.partial.empty() || !o.checkpoint.empty()) state = std::make_shared<const RenderState>(renderer.state());
     const Frame fr = checkpoint(renderer.samplesDone(), state.get(), o.denoiser != nullptr);
     const Image& img = fr.image;
     for (std::size_t i = 0; i < img.pixelCount(); ++i)
