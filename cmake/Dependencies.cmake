@@ -6,6 +6,7 @@ find_package(tinyexr REQUIRED)
 find_package(TinyGLTF REQUIRED)                      # libtinygltf-dev: a shared library (no TINYGLTF_IMPLEMENTATION)
 find_package(draco REQUIRED)                         # libdraco-dev: KHR_draco_mesh_compression
 find_package(meshoptimizer REQUIRED)                 # libmeshoptimizer-dev: EXT_meshopt_compression
+find_package(SPIRV-Tools-opt REQUIRED)               # spirv-tools: specialization on the host (host/vk/spirv_specialize.h)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)   # libstb-dev: headers under <stb/...> + libstb
 find_package(Threads REQUIRED)

@@ -9,7 +9,7 @@
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
   libdraco-dev libmeshoptimizer-dev
   openimageio-tools  # oiiotool: the GPU tests read vkpath's EXR layers with the OpenEXR library too

@@ -76,6 +76,8 @@ render options:
   --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
   --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full
+  --specialize W          host (default: the variant's constants baked into the kernel before the
+                          driver compiles it: faster to compile) | driver (the same image)
   --device SEL            device index or name substring (default: the most capable); render: 'all' or
                           a list (0,1) splits the samples over several devices and merges them
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
@@ -222,6 +224,10 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 const std::string v = value(f);
                 if (v == "full") a.render.fullVariant = true;
                 else if (v != "auto") usage("--variant must be auto or full, got '" + v + "'");
+            } else if (f == "--specialize") {
+                const std::string v = value(f);
+                if (v == "driver") a.render.specializeOnHost = false;
+                else if (v != "host") usage("--specialize must be host or driver, got '" + v + "'");
             } else if (f == "--exposure") a.session.exposure = parseDouble(f, value(f), -64, 64);
             else if (f == "--dump-every") a.session.dumpEvery = parseUint(f, value(f), 1, 1u << 24);
             else if (f == "--dump-dir") a.session.dumpDir = value(f);

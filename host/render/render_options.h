@@ -64,6 +64,11 @@ struct RenderOptions {
     std::uint32_t workgroupX = 8, workgroupY = 8;
     bool linearTiles = false;
     bool fullVariant = false;  ///< compile every feature in (`--variant full`)
+    /// Bake the variant's specialization constants into the kernel's SPIR-V before the driver
+    /// compiles it (vk/spirv_specialize.h; `--specialize host`, default) or leave them to the
+    /// driver (`--specialize driver`). The same image either way; lavapipe compiles the host-
+    /// specialized kernel several times faster.
+    bool specializeOnHost = true;
     /// Add every sample's feature values (albedo, normal, position: shared/aov.h) to per-pixel sums
     /// (`--aov`); the image's samples are unchanged.
     bool aov = false;

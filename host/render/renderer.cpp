@@ -152,6 +152,7 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
     desc.spirv = std::span<const std::uint32_t>(kPathtraceSpv, sizeof(kPathtraceSpv) / sizeof(kPathtraceSpv[0]));
     desc.pushConstantBytes = sizeof(gpu::GpuPush);
     desc.specConstants = features_.specConstants();
+    desc.specializeOnHost = options.specializeOnHost;
     desc.descriptorSets = std::uint32_t(impl_->bands.size());
     impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
     impl_->views.reserve(std::size(kKernelBindings));  // views are bound by handle below

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "vk/spirv_specialize.h"
+
 namespace vkp {
 
 namespace {
@@ -35,9 +37,15 @@ std::shared_ptr<const SharedPipeline> compile(VulkanDevice& dev, const ComputePi
     plci.pPushConstantRanges = &pcr;
     out->layout = vk::raii::PipelineLayout(device, plci);
 
+    std::vector<std::uint32_t> specialized;
+    std::span<const std::uint32_t> code = desc.spirv;
+    if (desc.specializeOnHost && !desc.specConstants.empty()) {
+        specialized = specializeSpirv(desc.spirv, desc.specConstants).words;
+        code = specialized;
+    }
     vk::ShaderModuleCreateInfo smci{};
-    smci.codeSize = desc.spirv.size() * sizeof(std::uint32_t);
-    smci.pCode = desc.spirv.data();
+    smci.codeSize = code.size() * sizeof(std::uint32_t);
+    smci.pCode = code.data();
     out->module = vk::raii::ShaderModule(device, smci);
 
     std::vector<vk::SpecializationMapEntry> entries;
@@ -68,7 +76,7 @@ ComputePipeline::ComputePipeline(VulkanDevice& dev, const ComputePipelineDesc& d
     {
         CompiledPipelines& cache = dev.compiledPipelines();
         CompiledPipelines::Key key{std::vector<std::uint32_t>(desc.spirv.begin(), desc.spirv.end()), desc.specConstants, desc.bindings,
-                                   desc.pushConstantBytes};
+                                   desc.pushConstantBytes, desc.specializeOnHost};
         const std::lock_guard<std::mutex> lock(cache.mutex);
         auto it = cache.pipelines.find(key);
         if (it == cache.pipelines.end()) {

@@ -59,6 +59,13 @@ TEST(CliArgs, DefaultsAndOtherCommands) {
     EXPECT_EQ(parse({"info", "s.json"}).command, Command::Info);
 }
 
+TEST(CliArgs, Specialize) {
+    EXPECT_TRUE(parseArgs({"render", "s.json"}).render.specializeOnHost);
+    EXPECT_TRUE(parseArgs({"render", "s.json", "--specialize", "host"}).render.specializeOnHost);
+    EXPECT_FALSE(parseArgs({"render", "s.json", "--specialize", "driver"}).render.specializeOnHost);
+    EXPECT_NE(errorOf({"render", "s.json", "--specialize", "gpu"}).find("--specialize must be host or driver"), std::string::npos);
+}
+
 TEST(CliArgs, Sequence) {
     EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "random"}).render.sequence, Sequence::Random);
     EXPECT_EQ(parseArgs({"render", "s.json", "--sequence", "sobol"}).render.sequence, Sequence::Sobol);

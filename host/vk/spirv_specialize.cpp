@@ -1,0 +1,131 @@
+#include "vk/spirv_specialize.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include <spirv-tools/optimizer.hpp>
+
+namespace vkp {
+
+namespace {
+
+// SPIR-V opcodes, decorations and built-ins used here (SPIR-V specification 1.6, section 3).
+constexpr std::uint32_t kMagic = 0x07230203u;
+constexpr std::uint32_t kHeaderWords = 5;
+constexpr std::uint32_t kOpConstantTrue = 41, kOpConstantFalse = 42, kOpConstant = 43;
+constexpr std::uint32_t kOpSpecConstantTrue = 48, kOpSpecConstantFalse = 49, kOpSpecConstant = 50;
+constexpr std::uint32_t kOpSpecConstantComposite = 51;
+constexpr std::uint32_t kOpDecorate = 71, kOpExecutionModeId = 331;
+constexpr std::uint32_t kDecorationSpecId = 1, kDecorationBuiltIn = 11, kBuiltInWorkgroupSize = 25;
+
+struct Instruction {
+    std::size_t at;        // index of its first word
+    std::uint32_t op;      // opcode
+    std::uint32_t words;   // word count
+};
+
+std::vector<Instruction> instructions(std::span<const std::uint32_t> spirv) {
+    if (spirv.size() < kHeaderWords || spirv[0] != kMagic) throw std::runtime_error("specializeSpirv: not a SPIR-V module");
+    std::vector<Instruction> out;
+    for (std::size_t i = kHeaderWords; i < spirv.size();) {
+        const std::uint32_t words = spirv[i] >> 16;
+        if (words == 0 || i + words > spirv.size())
+            throw std::runtime_error("specializeSpirv: bad instruction at word " + std::to_string(i));
+        out.push_back({i, spirv[i] & 0xffffu, words});
+        i += words;
+    }
+    return out;
+}
+
+// Bakes the values in; returns the module and the constant_ids left as specialization constants.
+SpirvSpecialization bake(std::span<const std::uint32_t> spirv, std::span<const std::uint32_t> values) {
+    const std::vector<Instruction> ins = instructions(spirv);
+    std::map<std::uint32_t, std::uint32_t> specIdOf;              // result id -> constant_id
+    std::map<std::uint32_t, std::vector<std::uint32_t>> parts;    // spec composite -> constituents
+    std::vector<std::uint32_t> keepRoots;                         // ids the workgroup size is made of
+    for (const Instruction& in : ins) {
+        const std::uint32_t* w = &spirv[in.at];
+        if (in.op == kOpDecorate && in.words >= 4 && w[2] == kDecorationSpecId) specIdOf[w[1]] = w[3];
+        if (in.op == kOpDecorate && in.words >= 4 && w[2] == kDecorationBuiltIn && w[3] == kBuiltInWorkgroupSize) keepRoots.push_back(w[1]);
+        if (in.op == kOpExecutionModeId)
+            for (std::uint32_t k = 3; k < in.words; ++k) keepRoots.push_back(w[k]);
+        if (in.op == kOpSpecConstantComposite && in.words >= 3) parts[w[2]].assign(w + 3, w + in.words);
+    }
+    std::set<std::uint32_t> kept;  // result ids
+    while (!keepRoots.empty()) {
+        const std::uint32_t id = keepRoots.back();
+        keepRoots.pop_back();
+        if (!kept.insert(id).second) continue;
+        if (auto it = parts.find(id); it != parts.end()) keepRoots.insert(keepRoots.end(), it->second.begin(), it->second.end());
+    }
+    auto bakes = [&](std::uint32_t resultId) {
+        auto it = specIdOf.find(resultId);
+        return it != specIdOf.end() && it->second < values.size() && !kept.count(resultId);
+    };
+
+    SpirvSpecialization out;
+    std::set<std::uint32_t> baked;  // result ids
+    out.words.assign(spirv.begin(), spirv.begin() + kHeaderWords);
+    for (const Instruction& in : ins) {
+        const std::uint32_t* w = &spirv[in.at];
+        const bool isBool = in.op == kOpSpecConstantTrue || in.op == kOpSpecConstantFalse;
+        if ((isBool && in.words == 3 && bakes(w[2])) || (in.op == kOpSpecConstant && in.words == 4 && bakes(w[2]))) {
+            const std::uint32_t v = values[specIdOf[w[2]]];
+            if (isBool) out.words.insert(out.words.end(), {(3u << 16) | (v ? kOpConstantTrue : kOpConstantFalse), w[1], w[2]});
+            else out.words.insert(out.words.end(), {(4u << 16) | kOpConstant, w[1], w[2], v});
+            baked.insert(w[2]);
+            continue;
+        }
+        out.words.insert(out.words.end(), w, w + in.words);
+    }
+    // Drop the SpecId decorations of the baked constants (a decoration may come before or after
+    // the constant in the module, so a second pass).
+    std::vector<std::uint32_t> words;
+    words.reserve(out.words.size());
+    words.assign(out.words.begin(), out.words.begin() + kHeaderWords);
+    for (const Instruction& in : instructions(out.words)) {
+        const std::uint32_t* w = &out.words[in.at];
+        if (in.op == kOpDecorate && in.words >= 4 && w[2] == kDecorationSpecId && baked.count(w[1])) continue;
+        words.insert(words.end(), w, w + in.words);
+    }
+    out.words = std::move(words);
+    for (const auto& [id, specId] : specIdOf)
+        if (!baked.count(id)) out.keptIds.push_back(specId);
+    std::sort(out.keptIds.begin(), out.keptIds.end());
+    out.keptIds.erase(std::unique(out.keptIds.begin(), out.keptIds.end()), out.keptIds.end());
+    return out;
+}
+
+}  // namespace
+
+SpirvSpecialization specializeSpirv(std::span<const std::uint32_t> spirv, std::span<const std::uint32_t> values) {
+    SpirvSpecialization s = bake(spirv, values);
+    std::string messages;
+    spvtools::Optimizer opt(SPV_ENV_VULKAN_1_2);
+    opt.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t& pos, const char* m) {
+        if (level <= SPV_MSG_ERROR) messages += (messages.empty() ? "" : "; ") + std::string(m) + " (word " + std::to_string(pos.index) + ")";
+    });
+    // Fold what the baked values decide, then remove what became dead; twice, since removing
+    // a branch can make a condition further on constant.
+    opt.RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
+        .RegisterPass(spvtools::CreateUnifyConstantPass());
+    for (int round = 0; round < 2; ++round)
+        opt.RegisterPass(spvtools::CreateCCPPass())
+            .RegisterPass(spvtools::CreateDeadBranchElimPass())
+            .RegisterPass(spvtools::CreateBlockMergePass())
+            .RegisterPass(spvtools::CreateAggressiveDCEPass())
+            .RegisterPass(spvtools::CreateEliminateDeadFunctionsPass());
+    opt.RegisterPass(spvtools::CreateEliminateDeadConstantPass());
+    spvtools::OptimizerOptions options;
+    options.set_run_validator(false);  // the input is our own build output; the tests validate the result
+    std::vector<std::uint32_t> optimized;
+    if (!opt.Run(s.words.data(), s.words.size(), &optimized, options))
+        throw std::runtime_error("specializeSpirv: SPIRV-Tools failed" + (messages.empty() ? std::string() : ": " + messages));
+    s.words = std::move(optimized);
+    return s;
+}
+
+}  // namespace vkp
