@@ -11,8 +11,10 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/huge_pages.h"
 
 int main(int argc, char** argv) {
+    vkp::reexecWithHugePages(argv);  // once, first: glibc.malloc.hugetlb=1 (core/huge_pages.h)
     const auto start = std::chrono::steady_clock::now();
     using namespace vkp;
     auto fail = [](int code, const std::string& msg) {

@@ -20,6 +20,9 @@ h=${H:-36}
 a=${A:-8}
 b=${B:-72}
 command -v valgrind >/dev/null || { echo "instructions-per-sample: valgrind is missing (apt-get install valgrind)" >&2; exit 2; }
+# vkpath re-executes itself for huge pages (host/core/huge_pages.h), which would leave valgrind
+# (it does not follow exec here): naming the tunable stops that, and keeps 4 KiB pages.
+export GLIBC_TUNABLES=${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 run() {  # run SPP LOG

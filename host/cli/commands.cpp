@@ -14,6 +14,7 @@
 #include "bvh/two_level.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/huge_pages.h"
 #include "core/interrupt.h"
 #include "cli/multi_device.h"
 #include "render/accum_file.h"
@@ -271,6 +272,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.sceneBufferBytes = renderer.sceneBufferBytes();
         rusage ru{};
         if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
+        st.hugePages = hugePagesRequested();
         const DeviceInfo& d = device.info();
         st.deviceName = d.name;
         st.deviceType = kindName(d.kind);

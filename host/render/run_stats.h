@@ -49,6 +49,7 @@ struct RunStats {
     std::uint32_t checkpoints = 0;
     // Memory.
     std::uint64_t peakRssBytes = 0;      ///< the process's peak resident set (getrusage; lavapipe's buffers included)
+    bool hugePages = false;              ///< malloc asks for transparent huge pages (core/huge_pages.h)
     std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
     // The device.
     std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;

@@ -185,8 +185,31 @@ TEST_F(CliBench, StatsJsonKeysAndConsistency) {
     // cornell-classic: 18 primitives of 48 bytes at least; a process with a Vulkan device uses megabytes.
     EXPECT_GE(j["scene_buffer_bytes"].get<double>(), 18 * 48);
     EXPECT_GT(j["peak_rss_bytes"].get<double>(), 1e6);
+    EXPECT_TRUE(j["huge_pages"].is_boolean());
     const ProcessResult v = run({"--version"});
     EXPECT_EQ(v.out, "vkpath " + j["vkpath_version"].get<std::string>() + "\n");
+}
+
+// vkpath re-executes itself with glibc.malloc.hugetlb=1 (core/huge_pages.h), adding it to
+// tunables already set; a GLIBC_TUNABLES that names it already is left alone (the opt-out).
+// Fails if the re-execution does not happen or ignores the user's value.
+TEST_F(CliBench, HugePagesByDefault) {
+    VKP_REQUIRE_DEVICE(dev);
+    struct Case {
+        const char* env;
+        bool expected;
+    };
+    for (const Case c : {Case{"", true}, Case{"GLIBC_TUNABLES=glibc.malloc.arena_max=2", true},
+                         Case{"GLIBC_TUNABLES=glibc.malloc.hugetlb=0", false}}) {
+        removeAll({"hp.json"});
+        const ProcessResult r = run({"render", scene("cornell-classic.json"), "--spp", "1", "--width", "8", "--height", "8",
+                                     "--stats-json", "hp.json", "-o", "hp.pfm", "--quiet"},
+                                    std::string("env -u GLIBC_TUNABLES ") + c.env);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        std::ifstream f(dir / "hp.json");
+        const nlohmann::json j = nlohmann::json::parse(f);
+        EXPECT_EQ(j["huge_pages"], c.expected) << c.env;
+    }
 }
 
 TEST_F(CliBench, StatsJsonWithTimeLimit) {
