@@ -1,12 +1,17 @@
 // Binned SAH builder (see build.h). Top-down, with an explicit task stack; each task bins its
 // primitives' centroids on the three axes, evaluates the SAH at every bin boundary and partitions
-// its range of the index array in place.
+// its range of the index array in place. Subtrees go to other threads while threads are free; the
+// result is the same node for node whatever the thread count (a forked subtree is spliced in where
+// the sequential build would have put it).
 #include "bvh/build.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <future>
 #include <memory>
+#include <thread>
 #include <stdexcept>
 #include <string>
 
@@ -73,7 +78,17 @@ struct Task {
     std::uint32_t begin, end;  // range of refs_ (and of primIndices)
     std::uint32_t depth;
     Aabb cbox;                 // centroid bounds of the range
+    int fork = -1;             // >= 0: the subtree of `node` is built by Builder::forks_[fork]; splice it
 };
+
+/// A subtree built on its own: nodes[0] is its root, inner nodes' child indices count from 0.
+struct Subtree {
+    std::vector<BvhBuildNode> nodes;
+    std::uint32_t maxDepth = 0;
+};
+
+/// Subtrees of at least this many primitives may go to another thread.
+constexpr std::uint32_t kForkMin = 4096;
 
 /// Levels of balanced binary splits needed to bring n primitives down to leaves of <= leafSize.
 std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize) {
@@ -103,33 +118,30 @@ struct Split {
 
 class Builder {
 public:
-    Builder(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
-            const BvhBuildOptions& opt)
-        : boxes_(boxes), centroids_(centroids), opt_(opt) {}
+    /// refs: the primitives, shared by the builders of one tree (each works on its own ranges);
+    /// freeThreads: threads that may still be started.
+    Builder(std::vector<PrimRef>& refs, const BvhBuildOptions& opt, std::atomic<int>& freeThreads)
+        : refs_(refs), opt_(opt), freeThreads_(freeThreads) {}
 
-    BvhBuildTree run() {
-        BvhBuildTree tree;
-        const std::size_t n = boxes_.size();
-        if (n == 0) return tree;
-        refs_.resize(n);
-        for (std::uint32_t i = 0; i < n; ++i) refs_[i] = {boxes_[i].lo, i, boxes_[i].hi, centroids_[i]};
-        nodes_ = &tree.nodes;
-        nodes_->reserve(2 * ((n + opt_.maxLeafSize - 1) / opt_.maxLeafSize) + 1);
-
-        BvhBuildNode root;
-        Aabb rootCbox;
-        rangeBounds(0, static_cast<std::uint32_t>(n), root.box, rootCbox);
-        nodes_->push_back(root);
+    /// Builds the subtree of `root` (its range of refs, depth and centroid bounds; root.node is
+    /// ignored) whose root node, box set, is `rootNode`.
+    Subtree build(Task root, const BvhBuildNode& rootNode) {
+        Subtree out;
+        nodes_ = &out.nodes;
+        out.nodes.reserve(2 * ((root.end - root.begin + opt_.maxLeafSize - 1) / opt_.maxLeafSize) + 1);
+        out.nodes.push_back(rootNode);
+        out.maxDepth = root.depth;
+        root.node = 0;
+        root.fork = -1;  // the forking builder's marker; here the subtree itself is built
         std::vector<Task> stack;
-        stack.push_back({0, 0, static_cast<std::uint32_t>(n), 0, rootCbox});
+        stack.push_back(root);
         while (!stack.empty()) {
             Task t = stack.back();
             stack.pop_back();
-            process(t, stack, tree.maxDepth);
+            if (t.fork >= 0) splice(t, out.maxDepth);
+            else process(t, stack, out.maxDepth);
         }
-        tree.primIndices.resize(n);
-        for (std::size_t i = 0; i < n; ++i) tree.primIndices[i] = refs_[i].id;
-        return tree;
+        return out;
     }
 
 private:
@@ -197,8 +209,40 @@ private:
         right.box = rbox;
         nodes_->push_back(left);
         nodes_->push_back(right);
-        stack.push_back({first + 1, mid, t.end, t.depth + 1, rcbox});
+        Task rightTask{first + 1, mid, t.end, t.depth + 1, rcbox};
+        if (t.end - mid >= kForkMin && takeThread()) {
+            // The right subtree on another thread; the marker left in its place splices it in
+            // once the left subtree is done, where the sequential build would have put its nodes.
+            rightTask.fork = static_cast<int>(forks_.size());
+            forks_.push_back(std::async(std::launch::async, [this, rightTask, right] {
+                Builder other(refs_, opt_, freeThreads_);
+                Subtree sub = other.build(rightTask, right);
+                freeThreads_.fetch_add(1);
+                return sub;
+            }));
+        }
+        stack.push_back(rightTask);
         stack.push_back({first, t.begin, mid, t.depth + 1, lcbox});
+    }
+
+    bool takeThread() {
+        int n = freeThreads_.load();
+        while (n > 0)
+            if (freeThreads_.compare_exchange_weak(n, n - 1)) return true;
+        return false;
+    }
+
+    /// Appends the forked subtree of marker t after the nodes built so far; its root replaces node t.node.
+    void splice(const Task& t, std::uint32_t& maxDepth) {
+        Subtree sub = forks_[static_cast<std::size_t>(t.fork)].get();
+        const auto offset = static_cast<std::uint32_t>(nodes_->size() - 1);  // the subtree's node i (i >= 1) goes to offset + i
+        auto moved = [offset](BvhBuildNode n) {
+            if (!n.isLeaf()) n.index += offset;  // leaves index the primitives, which do not move
+            return n;
+        };
+        (*nodes_)[t.node] = moved(sub.nodes[0]);
+        for (std::size_t i = 1; i < sub.nodes.size(); ++i) nodes_->push_back(moved(sub.nodes[i]));
+        maxDepth = std::max(maxDepth, sub.maxDepth);
     }
 
     /// Bins the task's centroids on each axis with a non-zero extent (into bins_) and returns the
@@ -333,13 +377,22 @@ private:
         return mid;
     }
 
-    std::span<const Aabb> boxes_;
-    std::span<const glm::vec3> centroids_;
+    std::vector<PrimRef>& refs_;
     BvhBuildOptions opt_;
+    std::atomic<int>& freeThreads_;
     std::array<std::array<Bin, kMaxBins>, 3> bins_{};
-    std::vector<PrimRef> refs_;
     std::vector<BvhBuildNode>* nodes_ = nullptr;
+    std::vector<std::future<Subtree>> forks_;
 };
+
+/// Bounds and centroid bounds of all of refs.
+void rangeBoundsOf(const std::vector<PrimRef>& refs, Aabb& box, Aabb& cbox) {
+    for (const PrimRef& r : refs) {
+        box.grow(r.lo);
+        box.grow(r.hi);
+        cbox.grow(r.c);
+    }
+}
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -364,8 +417,25 @@ BvhBuildTree buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> ce
             throw std::invalid_argument("buildBvh: primitive " + std::to_string(i) +
                                         " has a non-finite or inverted box or centroid");
     }
-    auto builder = std::make_unique<Builder>(boxes, centroids, options);  // ~40 KiB of bins
-    return builder->run();
+    BvhBuildTree tree;
+    const std::size_t n = boxes.size();
+    if (n == 0) return tree;
+    std::vector<PrimRef> refs(n);
+    for (std::uint32_t i = 0; i < n; ++i) refs[i] = {boxes[i].lo, i, boxes[i].hi, centroids[i]};
+    BvhBuildNode root;
+    Aabb rootCbox;
+    rangeBoundsOf(refs, root.box, rootCbox);
+    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    std::atomic<int> freeThreads(static_cast<int>(std::min(threads, 64u)) - 1);
+    {
+        auto builder = std::make_unique<Builder>(refs, options, freeThreads);  // ~21 KiB of bins
+        Subtree all = builder->build(Task{0, 0, static_cast<std::uint32_t>(n), 0, rootCbox}, root);
+        tree.nodes = std::move(all.nodes);
+        tree.maxDepth = all.maxDepth;
+    }
+    tree.primIndices.resize(n);
+    for (std::size_t i = 0; i < n; ++i) tree.primIndices[i] = refs[i].id;
+    return tree;
 }
 
 BvhBuildTree buildBvh(std::span<const Shape> shapes, const BvhBuildOptions& options) {

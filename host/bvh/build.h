@@ -56,6 +56,9 @@ struct BvhBuildOptions {
     std::uint32_t maxDepth = 32;     ///< leaf depth bound (root = 0), in [1, 32]; always honoured
     float traversalCost = 1.0f;      ///< Ct
     float intersectionCost = 1.0f;   ///< Ci
+    /// Threads to build with (subtrees of >= 4096 primitives go to free threads); 0: one per
+    /// hardware thread. The tree is the same, node for node, for every count.
+    std::uint32_t threads = 0;
 };
 
 /// One node of the build tree. Inner nodes: count == 0, children at nodes[index] and
@@ -76,7 +79,8 @@ struct BvhBuildTree {
 };
 
 /// Build a BVH over n primitives given by their boxes and centroids (equal sizes, finite, lo <= hi;
-/// otherwise std::invalid_argument). Iterative (no recursion). Guarantees: every leaf holds
+/// otherwise std::invalid_argument). Iterative (no recursion), on options.threads threads, with the
+/// same result for every thread count. Guarantees: every leaf holds
 /// 1..maxLeafSize primitives; a root with >= 2 primitives is always split (so only n <= 1 gives a
 /// leaf root); leaf depth <= options.maxDepth, enforced by switching from SAH to object-median
 /// splits when the remaining depth budget becomes tight (so adversarial input, e.g. exponentially
