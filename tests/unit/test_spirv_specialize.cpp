@@ -117,43 +117,47 @@ std::size_t count(const std::string& text, const std::string& pattern) {
     return std::size_t(std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
 }
 
-TEST(SpirvSpecialize, BakesTheValuesAndRemovesWhatTheyMakeDead) {
+/// kModule specialized with useCall (id 0), k = 7 (id 1) and f = 2.5 (id 2), checked valid; its
+/// disassembly, and the result in `out`.
+std::string specializedModule(bool useCall, SpirvSpecialization& out) {
     const std::vector<std::uint32_t> in = assemble(kModule);
-    ASSERT_EQ(validate(in), "");
-    const std::string before = disassemble(in);
-    ASSERT_EQ(count(before, "= OpFunction "), 2u);
+    EXPECT_EQ(validate(in), "");
+    EXPECT_EQ(count(disassemble(in), "= OpFunction "), 2u);
+    const std::uint32_t values[] = {useCall ? 1u : 0u, 7u, std::bit_cast<std::uint32_t>(2.5f)};
+    out = specializeSpirv(in, values);
+    EXPECT_EQ(validate(out.words), "");
+    return disassemble(out.words);
+}
 
-    const std::uint32_t values[] = {0u, 7u, std::bit_cast<std::uint32_t>(2.5f)};
-    const SpirvSpecialization s = specializeSpirv(in, values);
-    EXPECT_EQ(validate(s.words), "");
-    const std::string text = disassemble(s.words);
-    // The bool was false: the branch with the call and the called function are gone.
-    EXPECT_EQ(count(text, "OpFunctionCall"), 0u) << text;
-    EXPECT_EQ(count(text, "= OpFunction "), 1u) << text;
-    EXPECT_EQ(count(text, "OpBranchConditional"), 0u) << text;
-    // The float is the value given, bit for bit, as a plain constant.
-    EXPECT_EQ(count(text, "OpConstant %[a-z0-9_]+ 2\\.5\\b"), 1u) << text;
-    // Ids 0-2 are no longer specialization constants; 7 (no value) and 19 (workgroup size) are.
-    EXPECT_EQ(count(text, "SpecId (0|1|2)\\b"), 0u) << text;
-    EXPECT_EQ(count(text, "SpecId 7\\b"), 1u) << text;
-    EXPECT_EQ(count(text, "SpecId 19\\b"), 1u) << text;
-    EXPECT_EQ(count(text, "OpSpecConstantComposite"), 1u) << text;
-    // k + unset stays an expression of the unset constant, with k's value folded in.
-    EXPECT_EQ(count(text, "OpConstant %[a-z0-9_]+ 7\\b"), 1u) << text;
-    EXPECT_EQ(count(text, "OpSpecConstantOp %[a-z0-9_]+ IAdd"), 1u) << text;
+/// Expects each pattern to occur in `text` as often as given.
+void expectCounts(const std::string& text, std::initializer_list<std::pair<const char*, std::size_t>> expected) {
+    for (const auto& [pattern, n] : expected) EXPECT_EQ(count(text, pattern), n) << pattern << " in\n" << text;
+}
+
+TEST(SpirvSpecialize, BakesTheValuesAndRemovesWhatTheyMakeDead) {
+    SpirvSpecialization s;
+    expectCounts(specializedModule(false, s),
+                 {// The bool was false: the branch with the call and the called function are gone.
+                  {"OpFunctionCall", 0},
+                  {"= OpFunction ", 1},
+                  {"OpBranchConditional", 0},
+                  // The float is the value given, bit for bit, as a plain constant.
+                  {"OpConstant %[a-z0-9_]+ 2\\.5\\b", 1},
+                  // Ids 0-2 are no longer specialization constants; 7 (no value) and 19 (workgroup size) are.
+                  {"SpecId (0|1|2)\\b", 0},
+                  {"SpecId 7\\b", 1},
+                  {"SpecId 19\\b", 1},
+                  {"OpSpecConstantComposite", 1},
+                  // k + unset stays an expression of the unset constant, with k's value folded in.
+                  {"OpConstant %[a-z0-9_]+ 7\\b", 1},
+                  {"OpSpecConstantOp %[a-z0-9_]+ IAdd", 1}});
     EXPECT_EQ(s.keptIds, (std::vector<std::uint32_t>{7u, 19u}));
 }
 
 TEST(SpirvSpecialize, ATrueBoolKeepsItsBranch) {
-    const std::vector<std::uint32_t> in = assemble(kModule);
-    const std::uint32_t values[] = {1u, 7u, std::bit_cast<std::uint32_t>(2.5f)};
-    const SpirvSpecialization s = specializeSpirv(in, values);
-    EXPECT_EQ(validate(s.words), "");
-    const std::string text = disassemble(s.words);
-    EXPECT_EQ(count(text, "OpFunctionCall"), 1u) << text;
-    EXPECT_EQ(count(text, "= OpFunction "), 2u) << text;
-    // The else branch (k + unset) is gone with it.
-    EXPECT_EQ(count(text, "IAdd"), 0u) << text;
+    SpirvSpecialization s;
+    // The call and its function stay; the else branch (k + unset) is gone.
+    expectCounts(specializedModule(true, s), {{"OpFunctionCall", 1}, {"= OpFunction ", 2}, {"IAdd", 0}});
 }
 
 TEST(SpirvSpecialize, NoValuesBakeNothing) {
