@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 #include "vk/spirv_specialize.h"
 
@@ -40,7 +42,11 @@ std::shared_ptr<const SharedPipeline> compile(VulkanDevice& dev, const ComputePi
     std::vector<std::uint32_t> specialized;
     std::span<const std::uint32_t> code = desc.spirv;
     if (desc.specializeOnHost && !desc.specConstants.empty()) {
-        specialized = specializeSpirv(desc.spirv, desc.specConstants).words;
+        try {
+            specialized = specializeSpirv(desc.spirv, desc.specConstants).words;
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(std::string(e.what()) + " (`--specialize driver` leaves specialization to the driver)");
+        }
         code = specialized;
     }
     vk::ShaderModuleCreateInfo smci{};
