@@ -4,9 +4,11 @@
 // The compiled pipeline (with its layouts) is shared: a second ComputePipeline on the same device
 // with the same SPIR-V, specialization constants, bindings and push-constant size reuses the
 // first one's (VulkanDevice::compiledPipelines) and only allocates descriptor sets of its own.
-// Lavapipe spends seconds compiling the path tracer's SPIR-V to LLVM and machine code (at the
-// pipeline's creation and its first dispatch), and compiling the same input again gives the same
-// code; the tests build many renderers of one variant in a process.
+// Lavapipe spends up to seconds compiling the path tracer's SPIR-V to LLVM and machine code (at
+// the pipeline's creation and its first dispatch), and compiling the same input again gives the
+// same code; the tests build many renderers of one variant in a process. Before the driver sees
+// it, the SPIR-V is specialized on the host (vk/spirv_specialize.h), which makes the pipeline's
+// creation several times faster (ComputePipelineDesc::specializeOnHost).
 #pragma once
 #include <cstdint>
 #include <map>
