@@ -116,6 +116,17 @@ struct Split {
     std::uint32_t imbalance = 0;
 };
 
+/// Bounds and centroid bounds of `refs`.
+void rangeBounds(std::span<const PrimRef> refs, Aabb& box, Aabb& cbox) {
+    box = Aabb{};
+    cbox = Aabb{};
+    for (const PrimRef& r : refs) {
+        box.grow(r.lo);
+        box.grow(r.hi);
+        cbox.grow(r.c);
+    }
+}
+
 class Builder {
 public:
     /// refs: the primitives, shared by the builders of one tree (each works on its own ranges);
@@ -146,13 +157,7 @@ public:
 
 private:
     void rangeBounds(std::uint32_t begin, std::uint32_t end, Aabb& box, Aabb& cbox) const {
-        box = Aabb{};
-        cbox = Aabb{};
-        for (std::uint32_t i = begin; i < end; ++i) {
-            box.grow(refs_[i].lo);
-            box.grow(refs_[i].hi);
-            cbox.grow(refs_[i].c);
-        }
+        vkp::rangeBounds(std::span<const PrimRef>(refs_).subspan(begin, end - begin), box, cbox);
     }
 
     void makeLeaf(const Task& t, std::uint32_t& maxDepth) {
@@ -385,15 +390,6 @@ private:
     std::vector<std::future<Subtree>> forks_;
 };
 
-/// Bounds and centroid bounds of all of refs.
-void rangeBoundsOf(const std::vector<PrimRef>& refs, Aabb& box, Aabb& cbox) {
-    for (const PrimRef& r : refs) {
-        box.grow(r.lo);
-        box.grow(r.hi);
-        cbox.grow(r.c);
-    }
-}
-
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
@@ -424,7 +420,7 @@ BvhBuildTree buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> ce
     for (std::uint32_t i = 0; i < n; ++i) refs[i] = {boxes[i].lo, i, boxes[i].hi, centroids[i]};
     BvhBuildNode root;
     Aabb rootCbox;
-    rangeBoundsOf(refs, root.box, rootCbox);
+    rangeBounds(refs, root.box, rootCbox);
     const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     std::atomic<int> freeThreads(static_cast<int>(std::min(threads, 64u)) - 1);
     {

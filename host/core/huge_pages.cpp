@@ -1,7 +1,6 @@
 #include "core/huge_pages.h"
 
 #include <cstdlib>
-#include <cstring>
 
 #include <unistd.h>
 
@@ -50,8 +49,7 @@ void reexecWithHugePages(char** argv) {
     const std::optional<std::string> tunables = tunablesWithHugePages(current);
     if (!tunables || !argv || !argv[0]) return;
     const std::optional<std::string> before = current ? std::optional<std::string>(current) : std::nullopt;
-    if (setenv("GLIBC_TUNABLES", tunables->c_str(), 1) != 0 || setenv(kGuard, "1", 1) != 0) return;
-    execv("/proc/self/exe", argv);
+    if (setenv("GLIBC_TUNABLES", tunables->c_str(), 1) == 0 && setenv(kGuard, "1", 1) == 0) execv("/proc/self/exe", argv);
     // Not re-executed (no /proc, say): go on with normal pages and the environment as it was.
     unsetenv(kGuard);
     if (before) setenv("GLIBC_TUNABLES", before->c_str(), 1);

@@ -61,37 +61,30 @@ SpirvSpecialization bake(std::span<const std::uint32_t> spirv, std::span<const s
         if (!kept.insert(id).second) continue;
         if (auto it = parts.find(id); it != parts.end()) keepRoots.insert(keepRoots.end(), it->second.begin(), it->second.end());
     }
-    auto bakes = [&](std::uint32_t resultId) {
-        auto it = specIdOf.find(resultId);
-        return it != specIdOf.end() && it->second < values.size() && !kept.count(resultId);
-    };
-
+    // The 32-bit constants and bools that get a value (result ids), then one pass that writes
+    // them as constants and drops their SpecId decorations.
+    std::set<std::uint32_t> baked;
+    for (const Instruction& in : ins) {
+        const std::uint32_t* w = &spirv[in.at];
+        const bool bakeable = ((in.op == kOpSpecConstantTrue || in.op == kOpSpecConstantFalse) && in.words == 3) ||
+                              (in.op == kOpSpecConstant && in.words == 4);
+        if (!bakeable || kept.count(w[2])) continue;
+        if (auto it = specIdOf.find(w[2]); it != specIdOf.end() && it->second < values.size()) baked.insert(w[2]);
+    }
     SpirvSpecialization out;
-    std::set<std::uint32_t> baked;  // result ids
+    out.words.reserve(spirv.size());
     out.words.assign(spirv.begin(), spirv.begin() + kHeaderWords);
     for (const Instruction& in : ins) {
         const std::uint32_t* w = &spirv[in.at];
-        const bool isBool = in.op == kOpSpecConstantTrue || in.op == kOpSpecConstantFalse;
-        if ((isBool && in.words == 3 && bakes(w[2])) || (in.op == kOpSpecConstant && in.words == 4 && bakes(w[2]))) {
+        if (in.op == kOpDecorate && in.words >= 4 && w[2] == kDecorationSpecId && baked.count(w[1])) continue;
+        if ((in.op == kOpSpecConstantTrue || in.op == kOpSpecConstantFalse || in.op == kOpSpecConstant) && baked.count(w[2])) {
             const std::uint32_t v = values[specIdOf[w[2]]];
-            if (isBool) out.words.insert(out.words.end(), {(3u << 16) | (v ? kOpConstantTrue : kOpConstantFalse), w[1], w[2]});
-            else out.words.insert(out.words.end(), {(4u << 16) | kOpConstant, w[1], w[2], v});
-            baked.insert(w[2]);
+            if (in.op == kOpSpecConstant) out.words.insert(out.words.end(), {(4u << 16) | kOpConstant, w[1], w[2], v});
+            else out.words.insert(out.words.end(), {(3u << 16) | (v ? kOpConstantTrue : kOpConstantFalse), w[1], w[2]});
             continue;
         }
         out.words.insert(out.words.end(), w, w + in.words);
     }
-    // Drop the SpecId decorations of the baked constants (a decoration may come before or after
-    // the constant in the module, so a second pass).
-    std::vector<std::uint32_t> words;
-    words.reserve(out.words.size());
-    words.assign(out.words.begin(), out.words.begin() + kHeaderWords);
-    for (const Instruction& in : instructions(out.words)) {
-        const std::uint32_t* w = &out.words[in.at];
-        if (in.op == kOpDecorate && in.words >= 4 && w[2] == kDecorationSpecId && baked.count(w[1])) continue;
-        words.insert(words.end(), w, w + in.words);
-    }
-    out.words = std::move(words);
     for (const auto& [id, specId] : specIdOf)
         if (!baked.count(id)) out.keptIds.push_back(specId);
     std::sort(out.keptIds.begin(), out.keptIds.end());
@@ -108,8 +101,9 @@ SpirvSpecialization specializeSpirv(std::span<const std::uint32_t> spirv, std::s
     opt.SetMessageConsumer([&](spv_message_level_t level, const char*, const spv_position_t& pos, const char* m) {
         if (level <= SPV_MSG_ERROR) messages += (messages.empty() ? "" : "; ") + std::string(m) + " (word " + std::to_string(pos.index) + ")";
     });
-    // Fold what the baked values decide, then remove what became dead; twice, since removing
-    // a branch can make a condition further on constant.
+    // Fold what the baked values decide, then remove what became dead. Twice: a removed branch
+    // can make a later condition constant (on cornell-classic one round already gave the same
+    // module; the second round costs little).
     opt.RegisterPass(spvtools::CreateFoldSpecConstantOpAndCompositePass())
         .RegisterPass(spvtools::CreateUnifyConstantPass());
     for (int round = 0; round < 2; ++round)
