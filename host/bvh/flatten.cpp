@@ -8,6 +8,7 @@
 
 #include "bvh/wide_pack.h"
 #include "core/errors.h"
+#include "shared/intersect.h"
 
 namespace vkp {
 namespace {
@@ -55,7 +56,8 @@ gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne) {
             break;
         case ShapeType::Triangle:
             p.p0 = v4(s.p0, header);
-            p.p1 = v4(s.p1, 0.0f);  // vertices, not edges (shaders/shared/gpu_types.h)
+            // Vertices, not edges (shaders/shared/gpu_types.h); p1.w flags a zero-area triangle.
+            p.p1 = v4(s.p1, gpu::triangleHasZeroArea(s.p0, s.p1, s.p2) ? 1.0f : 0.0f);
             p.p2 = v4(s.p2, light);
             break;
     }

@@ -58,8 +58,9 @@ struct FlatBvh {
 /// in object space), or nullptr for an instance primitive.
 const Shape* primShape(const Scene& scene, const FlatBvh& bvh, std::size_t i);
 
-/// Pack one shape: header = kind | material << 2 (p0.w bits), sphere radius in p1.w, triangle
-/// edges e1 = v1 - v0 and e2 = v2 - v0, p2.w = bits of lightPlusOne (light index + 1, 0 = none).
+/// Pack one shape (layout: shaders/shared/gpu_types.h GpuPrim): header = kind | material << 2
+/// (p0.w bits), sphere radius in p1.w, a triangle's three vertices and in p1.w its zero-area flag
+/// (1: never hit), p2.w = bits of lightPlusOne (light index + 1, 0 = none).
 gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne);
 
 /// Flatten a build tree over scene.shapes (tree built from those shapes in that order). A tree

@@ -11,7 +11,8 @@
 // The shared code compiles out what a scene does not have (plain `if`s on these): primitive kinds
 // (shared/intersect.h), material types and shading normals (shared/bsdf.h).
 #define VKP_HAS_SPHERES HAS_SPHERES
-#define VKP_HAS_PARALLELOGRAMS HAS_PARALLELOGRAMS
+#define VKP_HAS_QUADS HAS_QUADS
+#define VKP_HAS_TRIANGLES HAS_TRIANGLES
 #define VKP_HAS_MATERIAL(t) (((MATERIALS >> (t)) & 1u) != 0u)
 #define VKP_SHADING_NORMALS HAS_VERTEX_ATTRIBUTES
 #define VKP_HAS_LAYERS HAS_LAYERS

@@ -55,7 +55,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = V
 // ---- Derived: what the masks above compile in (specialization-constant expressions, folded when
 // the pipeline is created, so a false one removes its code as a plain constant does).
 const bool HAS_SPHERES = (SHAPES & (1u << PRIM_SPHERE)) != 0u;
-const bool HAS_PARALLELOGRAMS = (SHAPES & ((1u << PRIM_QUAD) | (1u << PRIM_TRIANGLE))) != 0u;  // quads and triangles
+const bool HAS_QUADS = (SHAPES & (1u << PRIM_QUAD)) != 0u;
+const bool HAS_TRIANGLES = (SHAPES & (1u << PRIM_TRIANGLE)) != 0u;
 const bool HAS_LAMBERTIAN = (MATERIALS & (1u << MAT_LAMBERTIAN)) != 0u;
 const bool HAS_METAL = (MATERIALS & (1u << MAT_METAL)) != 0u;
 const bool HAS_DIELECTRIC = (MATERIALS & (1u << MAT_DIELECTRIC)) != 0u;

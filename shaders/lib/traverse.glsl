@@ -15,7 +15,7 @@
 //   GpuPrim fetchPrim(uint i);           // primitive i (3 texels)
 //   GpuWideNode fetchWideNode(uint i);   // node i (8 texels); defined here from uNodes when
 //                                        // lib/bindings.glsl was included (the path tracer)
-// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false (shared/intersect.h),
+// and may define VKP_HAS_SPHERES / VKP_HAS_QUADS / VKP_HAS_TRIANGLES as false (shared/intersect.h),
 // VKP_MAX_PASSES, VKP_ANY_HIT(primIndex, prim, ab, o, d): false rejects a candidate hit (alpha
 // cut-outs and stochastic transparency, lib/alpha.glsl), and VKP_HAS_INSTANCES with
 // GpuInstance fetchInstance(uint i) (two-level BVH, lib/traverse_wide.glsl).

@@ -6,7 +6,7 @@
 // The includer defines, BEFORE including this file (it declares no bindings):
 //   GpuWideNode fetchWideNode(uint i);   // node i (8 texels)
 //   GpuPrim fetchPrim(uint i);           // primitive i (3 texels)
-// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false, VKP_MAX_PASSES and
+// and may define VKP_HAS_SPHERES / VKP_HAS_QUADS / VKP_HAS_TRIANGLES as false, VKP_MAX_PASSES and
 // VKP_ANY_HIT(primIndex, prim, ab, o, d) (false rejects a candidate hit).
 //
 // Algorithm: each step tests the node's four child boxes (intersectBox, component by component),

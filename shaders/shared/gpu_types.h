@@ -14,7 +14,8 @@ VKP_BEGIN
 // Header word (p0.w as bits): kind (PRIM_*) | (material << 2). Material indices < 2^30. PRIM_INSTANCE:
 // kind | (instance index << 2), every coordinate NaN (shared/instance.h).
 // p0.xyz: sphere centre | quad Q | triangle v0        (world units)
-// p1.xyz: -             | quad u | triangle v1; p1.w: sphere radius (else 0)
+// p1.xyz: -             | quad u | triangle v1; p1.w: sphere radius | 0 | triangle: 1 if of zero area
+//         (intersect.h triangleHasZeroArea: never hit), else 0
 // p2.xyz: -             | quad v | triangle v2; p2.w: bits of light index + 1 (0: not a light)
 // Triangles keep their vertices, not edges: v0 + (v1 - v0) != v1 in float, and neighbours must see
 // bit-identical shared vertices for the watertight test (intersect.h). primEdge1/2 give the edges.

@@ -108,6 +108,18 @@ VKP_FN float intersectTriangleWatertight(vec3 v0, vec3 v1, vec3 v2, vec3 o, vec3
     return hit ? t : VKP_FAR;
 }
 
+/// True when the triangle (v0, v1, v2) has zero area as vkpath defines it (scenes/README.md:
+/// edges parallel to within about 1e-6 radians, |e1 x e2|^2 <= 1e-12 |e1|^2 |e2|^2 in float, or a
+/// normal whose square underflows): such a triangle is never hit (primNormal could not normalise
+/// its normal). Decided once per triangle when it is packed (host/bvh/flatten.cpp packShape sets
+/// GpuPrim::p1.w to 1), not at every test: intersectPrim reads the flag.
+VKP_FN bool triangleHasZeroArea(vec3 v0, vec3 v1, vec3 v2) {
+    vec3 e1 = v1 - v0;
+    vec3 e2 = v2 - v0;
+    vec3 n = cross(e1, e2);
+    return !(dot(n, n) > (1.0e-12f * dot(e1, e1)) * dot(e2, e2)) || !(dot(n, n) > 0.0f);
+}
+
 /// Header word of a packed primitive (see GpuPrim).
 VKP_FN uint primKind(GpuPrim p) { return floatBitsToUint(p.p0.w) & 3u; }
 VKP_FN uint primMaterial(GpuPrim p) { return floatBitsToUint(p.p0.w) >> 2u; }
@@ -133,16 +145,21 @@ VKP_FN GpuPrim primMoved(GpuPrim p, vec3 shift) {
     return q;
 }
 
-// A kernel compiled for a scene without some primitive kind defines VKP_HAS_SPHERES or
-// VKP_HAS_PARALLELOGRAMS (quads and triangles) as a boolean expression, usually a specialization
-// constant, before including this header. They are tested in plain `if`s, so a false constant
-// removes that kind's code from intersectPrim when the pipeline is created (on lavapipe every
-// reachable branch body runs, see docs/design.md "Every reachable branch runs"). Primitives of a compiled-out kind are never hit.
+// A kernel compiled for a scene without some primitive kind defines VKP_HAS_SPHERES, VKP_HAS_QUADS
+// or VKP_HAS_TRIANGLES as a boolean expression, usually a specialization constant, before including
+// this header. They are tested in plain `if`s, so a false constant removes that kind's code from
+// intersectPrim when the pipeline is created (on lavapipe every reachable branch body runs, see
+// docs/design.md "Every reachable branch runs": a scene of quads only would otherwise run the
+// triangle test too at every primitive, and a mesh the quad test). Primitives of a compiled-out
+// kind are never hit.
 #ifndef VKP_HAS_SPHERES
 #define VKP_HAS_SPHERES true
 #endif
-#ifndef VKP_HAS_PARALLELOGRAMS
-#define VKP_HAS_PARALLELOGRAMS true
+#ifndef VKP_HAS_QUADS
+#define VKP_HAS_QUADS true
+#endif
+#ifndef VKP_HAS_TRIANGLES
+#define VKP_HAS_TRIANGLES true
 #endif
 
 /// First edge of a quad or triangle (world units): quad u as stored, triangle v1 - v0.
@@ -165,24 +182,21 @@ VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OU
     if (VKP_HAS_SPHERES && kind == PRIM_SPHERE) {
         t = intersectSphere(vec3(p.p0.x, p.p0.y, p.p0.z), p.p1.w, o, d, tmin, tmax);
     }
-    if (VKP_HAS_PARALLELOGRAMS && kind != PRIM_SPHERE) {
+    if (VKP_HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
         vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
         vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
         vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
-        if (kind == PRIM_TRIANGLE) {
-            // The three vertices are stored as given, so neighbours that share a vertex test the
-            // bit-identical point and the watertight test keeps its guarantee through the BVH.
-            // Zero-area triangles are never hit (scenes/README.md: edges parallel to within 1e-6
-            // radians, |e1 x e2| <= 1e-6 |e1| |e2|, as the loader decides it); primNormal could not
-            // normalise their normal. Also catches a normal whose square underflows.
-            vec3 e1 = p1 - p0;
-            vec3 e2 = p2 - p0;
-            vec3 n = cross(e1, e2);
-            t = intersectTriangleWatertight(p0, p1, p2, o, d, tmin, tmax, ab);
-            if (!(dot(n, n) > (1.0e-12f * dot(e1, e1)) * dot(e2, e2)) || !(dot(n, n) > 0.0f)) t = VKP_FAR;
-        } else {
-            t = intersectParallelogram(p0, p1, p2, false, o, d, tmin, tmax, ab);
-        }
+        // The three vertices are stored as given, so neighbours that share a vertex test the
+        // bit-identical point and the watertight test keeps its guarantee through the BVH.
+        // Zero-area triangles (triangleHasZeroArea, flagged in p1.w when packed) are never hit.
+        t = intersectTriangleWatertight(p0, p1, p2, o, d, tmin, tmax, ab);
+        if (p.p1.w != 0.0f) t = VKP_FAR;
+    }
+    if (VKP_HAS_QUADS && kind == PRIM_QUAD) {
+        vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
+        vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
+        vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
+        t = intersectParallelogram(p0, p1, p2, false, o, d, tmin, tmax, ab);
     }
     return t;
 }

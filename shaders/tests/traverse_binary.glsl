@@ -10,7 +10,7 @@
 // the includer's duties, except that it defines, BEFORE including this file:
 //   GpuNode fetchNode(uint i);   // node i of the flattened BVH (FlatBvh::nodes, host/bvh/flatten.h, 4 texels)
 //   GpuPrim fetchPrim(uint i);   // primitive i (3 texels)
-// and may define VKP_HAS_SPHERES / VKP_HAS_PARALLELOGRAMS as false (shared/intersect.h),
+// and may define VKP_HAS_SPHERES / VKP_HAS_QUADS / VKP_HAS_TRIANGLES as false (shared/intersect.h),
 // VKP_MAX_PASSES, VKP_ANY_HIT(primIndex, prim, ab, o, d), and VKP_HAS_INSTANCES with
 // GpuInstance fetchInstance(uint i). Loop guard and pass counting: as in lib/traverse.glsl.
 //

@@ -34,12 +34,14 @@
 #include "bvh_trace_ssbo.spv.h"
 #include "bvh_trace_wide.spv.h"
 #include "bvh_trace_wide_bda.spv.h"
+#include "bvh_trace_wide_quantized.spv.h"
 #include "bvh_trace_wide_recull.spv.h"
 #include "bvh_trace_wide_unordered.spv.h"
 #include "gpu_env.h"
 #include "test_paths.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
+#include "wide_quantized.h"
 
 namespace vkp::test {
 namespace {
@@ -62,14 +64,15 @@ struct Variant {
     vk::DescriptorType dataType;  ///< descriptor type of bindings 1 and 2
     bool wide = false;            ///< nodes in the 4-wide layout (GpuWideNode)
     bool bda = false;             ///< nodes and primitives read through buffer device addresses (push constants)
+    bool quantized = false;       ///< 4-wide nodes quantized to 4 texels (wide_quantized.h)
 };
 
 /// Buffers of one scene, bound to one pipeline per variant.
 struct LayoutBench {
     VulkanDevice& dev;
     std::size_t rayCount;
-    GpuBuffer rays, nodes, wideNodes, prims, out;
-    vk::raii::BufferView nodeView{nullptr}, wideView{nullptr}, primView{nullptr};
+    GpuBuffer rays, nodes, wideNodes, quantizedNodes, prims, out;
+    vk::raii::BufferView nodeView{nullptr}, wideView{nullptr}, quantizedView{nullptr}, primView{nullptr};
     std::vector<std::unique_ptr<ComputePipeline>> pipes;
 
     LayoutBench(VulkanDevice& d, const FlatBvh& bvh, const std::vector<gpu::GpuWideNode>& wide, const std::vector<Ray>& rs,
@@ -77,6 +80,7 @@ struct LayoutBench {
         : dev(d), rayCount(rs.size()), rays(d, rs.size() * 32, vk::BufferUsageFlagBits::eStorageBuffer),
           nodes(d, bvh.nodes.size() * sizeof(gpu::GpuNode), usage(d)),
           wideNodes(d, wide.size() * sizeof(gpu::GpuWideNode), usage(d)),
+          quantizedNodes(d, wide.size() * kQuantizedNodeTexels * sizeof(glm::uvec4), usage(d)),
           prims(d, bvh.prims.size() * sizeof(gpu::GpuPrim), usage(d)),
           out(d, rs.size() * sizeof(glm::uvec4), vk::BufferUsageFlagBits::eStorageBuffer) {
         std::vector<glm::vec4> data;
@@ -88,6 +92,9 @@ struct LayoutBench {
         nodes.upload(bvh.nodes.data(), bvh.nodes.size() * sizeof(gpu::GpuNode));
         prims.upload(bvh.prims.data(), bvh.prims.size() * sizeof(gpu::GpuPrim));
         wideNodes.upload(wide.data(), wide.size() * sizeof(gpu::GpuWideNode));
+        const std::vector<glm::uvec4> quantized = packWideQuantized(wide);
+        quantizedNodes.upload(quantized.data(), quantized.size() * sizeof(glm::uvec4));
+        quantizedView = quantizedNodes.texelView();
         nodeView = nodes.texelView();
         wideView = wideNodes.texelView();
         primView = prims.texelView();
@@ -99,7 +106,7 @@ struct LayoutBench {
             auto p = std::make_unique<ComputePipeline>(dev, desc);
             p->bindBuffer(0, rays.buffer());
             if (v.dataType == vk::DescriptorType::eUniformTexelBuffer) {
-                p->bindTexelView(1, v.wide ? *wideView : *nodeView);
+                p->bindTexelView(1, v.quantized ? *quantizedView : v.wide ? *wideView : *nodeView);
                 p->bindTexelView(2, *primView);
             } else {
                 p->bindBuffer(1, v.wide ? wideNodes.buffer() : nodes.buffer());
@@ -141,7 +148,7 @@ struct LayoutBench {
 
 /// The box around every shape of the scene (scene/scene.h sceneBounds), in float.
 std::pair<glm::vec3, glm::vec3> floatBounds(const Scene& scene) {
-    const auto [lo, hi] = floatBounds(scene);
+    const auto [lo, hi] = sceneBounds(scene);
     return {glm::vec3(lo), glm::vec3(hi)};
 }
 
@@ -181,6 +188,8 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
          vk::DescriptorType::eUniformTexelBuffer, true},
         {"wide4 recull", std::span<const std::uint32_t>(kBvhTraceWideRecullSpv, std::size(kBvhTraceWideRecullSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 quantized", std::span<const std::uint32_t>(kBvhTraceWideQuantizedSpv, std::size(kBvhTraceWideQuantizedSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true, false, true},
     };
     if (dev.info().bufferDeviceAddress) {
         variants.push_back({"bda", std::span<const std::uint32_t>(kBvhTraceBdaSpv, std::size(kBvhTraceBdaSpv)),
@@ -254,6 +263,67 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
     std::fflush(stdout);
 }
 
+/// Build parameters as a lever (issue 18): the same scene built with several BvhBuildOptions,
+/// each traced by the kernels' 4-wide traversal on the same rays, rounds interleaved. Every build
+/// must give the same closest-hit distance (bits) and any-hit answer as the default build.
+void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene) {
+    struct Option {
+        const char* name;
+        BvhBuildOptions o;
+    };
+    std::vector<Option> options(5);
+    options[0].name = "default (leaf <= 4, Ct 1, Ci 1)";
+    options[1].name = "leaf <= 8";
+    options[1].o.maxLeafSize = 8;
+    options[2].name = "leaf <= 2";
+    options[2].o.maxLeafSize = 2;
+    options[3].name = "leaf <= 8, Ct 2";
+    options[3].o.maxLeafSize = 8;
+    options[3].o.traversalCost = 2.0f;
+    options[4].name = "leaf <= 4, Ct 0.5";
+    options[4].o.traversalCost = 0.5f;
+    const Variant wide4 = {"wide4 texel", std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)),
+                           vk::DescriptorType::eUniformTexelBuffer, true};
+    const std::vector<Ray> rays = incoherentRays(scene, envCount("VKP_BENCH_RAYS", 131072), 17);
+    std::vector<FlatBvh> bvhs;
+    std::vector<std::unique_ptr<LayoutBench>> benches;
+    for (const Option& opt : options) {
+        bvhs.push_back(buildFlatBvh(scene, opt.o));
+        benches.push_back(std::make_unique<LayoutBench>(dev, bvhs.back(), bvhs.back().wideNodes, rays, std::vector<Variant>{wide4}));
+    }
+    std::vector<glm::uvec4> ref, res;
+    benches[0]->run(0, ref);
+    for (std::size_t b = 1; b < benches.size(); ++b) {
+        benches[b]->run(0, res);
+        int mismatches = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) mismatches += res[i].x != ref[i].x || (res[i].w & 1u) != (ref[i].w & 1u);
+        EXPECT_EQ(mismatches, 0) << label << ": build " << options[b].name << " finds other hits than the default build";
+    }
+    dev.instance().throwIfValidationMessages("in the BVH build-options bench");
+    const std::size_t rounds = std::max<std::size_t>(1, envCount("VKP_BENCH_ROUNDS", 5));
+    std::vector<std::vector<double>> cpu(options.size()), ratio(options.size());
+    std::vector<double> passes(options.size(), 0.0);
+    for (std::size_t r = 0; r < rounds; ++r) {
+        for (std::size_t b = 0; b < benches.size(); ++b) {
+            cpu[b].push_back(benches[b]->run(0, res).second);
+            if (r == 0)
+                for (const glm::uvec4& x : res) passes[b] += double(x.z) + double(x.w >> 1u);
+        }
+        for (std::size_t b = 0; b < benches.size(); ++b) ratio[b].push_back(cpu[0].back() / cpu[b].back());
+    }
+    const double raysPerRun = 2.0 * double(rays.size());
+    std::printf("\n%s: build options, 4-wide texel traversal, %zu ray slots (closest + any), %zu interleaved rounds\n", label,
+                rays.size(), rounds);
+    std::printf("| build | wide nodes | SAH cost | passes per ray | Mrays/CPU-s (median) | CPU-time speed vs default: median [min, max] |\n");
+    std::printf("|---|---|---|---|---|---|\n");
+    for (std::size_t b = 0; b < options.size(); ++b) {
+        const auto [lo, hi] = std::minmax_element(ratio[b].begin(), ratio[b].end());
+        std::printf("| %s | %zu | %.2f | %.1f | %.3f | %.3f [%.3f, %.3f] |\n", options[b].name, bvhs[b].wideNodes.size(),
+                    bvhs[b].stats.sahCost, passes[b] / raysPerRun, raysPerRun / median(cpu[b]) * 1e-6, median(ratio[b]), *lo, *hi);
+    }
+    std::fflush(stdout);
+}
+
 Scene cornellClassic() { return loadSceneJson(scenesDir() / "cornell-classic.json"); }
 
 TEST(BenchBvhLayout, CornellClassic) {
@@ -261,8 +331,8 @@ TEST(BenchBvhLayout, CornellClassic) {
     benchScene(dev, "cornell-classic", cornellClassic());
 }
 
-TEST(BenchBvhLayout, CornellWithMillionTriangleMesh) {
-    VKP_REQUIRE_DEVICE(dev);
+/// cornell-classic with a sphere mesh of 1,002,528 triangles in its middle.
+Scene cornellWithMillionTriangleMesh() {
     Scene scene = cornellClassic();
     const auto [lo, hi] = floatBounds(scene);
     const glm::vec3 center = 0.5f * (lo + hi);
@@ -273,8 +343,19 @@ TEST(BenchBvhLayout, CornellWithMillionTriangleMesh) {
         s.p2 += center;
         scene.shapes.push_back(s);
     }
+    return scene;
+}
+
+TEST(BenchBvhLayout, CornellWithMillionTriangleMesh) {
+    VKP_REQUIRE_DEVICE(dev);
+    const Scene scene = cornellWithMillionTriangleMesh();
     ASSERT_GE(scene.shapes.size(), 1000000u);
     benchScene(dev, "cornell-classic + 1M-triangle mesh", scene);
+}
+
+TEST(BenchBvhLayout, BuildOptionsMillionTriangleMesh) {
+    VKP_REQUIRE_DEVICE(dev);
+    benchBuildOptions(dev, "cornell-classic + 1M-triangle mesh", cornellWithMillionTriangleMesh());
 }
 
 }  // namespace
