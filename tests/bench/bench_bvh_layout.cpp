@@ -4,9 +4,11 @@
 // storage buffers (the same source compiled with -DVKP_FETCH_SSBO), through buffer device addresses
 // (-DVKP_FETCH_BDA: plain pointer loads, no descriptor; binary and 4-wide nodes; skipped on a device
 // without bufferDeviceAddress), and the 4-wide node layout
-// (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and two traversal
-// variants of it: children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED) and inner
-// children culled again against the hit found in the node's leaves (-DVKP_WIDE_RECULL). Runs are interleaved
+// (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and three variants of it:
+// children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED), inner children culled
+// again against the hit found in the node's leaves (-DVKP_WIDE_RECULL), and nodes quantized to
+// 64 bytes (-DVKP_BVH_WIDE_QUANTIZED, wide_quantized.h). A third case builds the 1M-triangle scene
+// with other BvhBuildOptions (leaf size, traversal cost) and times the 4-wide kernel on each. Runs are interleaved
 // (A B A B ...) and reported as rays/s ratios against the texel variant: a report, never a timed
 // assertion. What it asserts: every variant returns the same hits (t bit-exact, primitive, any-hit
 // answer; and pass counts for the variants of the binary layout) as the texel variant, and the texel variant matches the CPU twin on a subset of the rays,
