@@ -179,13 +179,13 @@ VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OU
     uint kind = primKind(p);
     ab = vec2(0.0f);
     float t = VKP_FAR;
+    vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
+    vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
+    vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
     if (VKP_HAS_SPHERES && kind == PRIM_SPHERE) {
-        t = intersectSphere(vec3(p.p0.x, p.p0.y, p.p0.z), p.p1.w, o, d, tmin, tmax);
+        t = intersectSphere(p0, p.p1.w, o, d, tmin, tmax);
     }
     if (VKP_HAS_TRIANGLES && kind == PRIM_TRIANGLE) {
-        vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
-        vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
-        vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
         // The three vertices are stored as given, so neighbours that share a vertex test the
         // bit-identical point and the watertight test keeps its guarantee through the BVH.
         // Zero-area triangles (triangleHasZeroArea, flagged in p1.w when packed) are never hit.
@@ -193,9 +193,6 @@ VKP_FN float intersectPrim(GpuPrim p, vec3 o, vec3 d, float tmin, float tmax, OU
         if (p.p1.w != 0.0f) t = VKP_FAR;
     }
     if (VKP_HAS_QUADS && kind == PRIM_QUAD) {
-        vec3 p0 = vec3(p.p0.x, p.p0.y, p.p0.z);
-        vec3 p1 = vec3(p.p1.x, p.p1.y, p.p1.z);
-        vec3 p2 = vec3(p.p2.x, p.p2.y, p.p2.z);
         t = intersectParallelogram(p0, p1, p2, false, o, d, tmin, tmax, ab);
     }
     return t;

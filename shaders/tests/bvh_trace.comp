@@ -51,27 +51,12 @@ layout(binding = 2) uniform usamplerBuffer primTexels;
 #endif
 
 #if defined(VKP_BVH_WIDE) && defined(VKP_BVH_WIDE_QUANTIZED)
-#include "shared/wide_bvh.h"
-// Bench variant: quantized 4-wide nodes (tests/bench/wide_quantized.h, 4 texels), decoded into
-// the GpuWideNode that the traversal reads: lo = origin + qlo * step (q * step is exact).
+#include "tests/wide_quantized.h"
+// Bench variant: quantized 4-wide nodes (4 texels), decoded into the GpuWideNode that the
+// traversal reads.
 GpuWideNode fetchWideNode(uint i) {
-    int b = int(i * 4u);
-    uvec4 t0 = VKP_NODE_TEXEL(b);
-    uvec4 t1 = VKP_NODE_TEXEL(b + 1);
-    uvec4 t2 = VKP_NODE_TEXEL(b + 2);
-    vec3 origin = uintBitsToFloat(t0.xyz);
-    vec3 step = uintBitsToFloat(((uvec3(t0.w) >> uvec3(0u, 8u, 16u)) & 0xffu) << 23u);
-    const uvec4 shifts = uvec4(0u, 8u, 16u, 24u);
-    GpuWideNode n;
-    n.loX = origin.x + vec4((uvec4(t1.x) >> shifts) & 0xffu) * step.x;
-    n.loY = origin.y + vec4((uvec4(t1.y) >> shifts) & 0xffu) * step.y;
-    n.loZ = origin.z + vec4((uvec4(t1.z) >> shifts) & 0xffu) * step.z;
-    n.hiX = origin.x + vec4((uvec4(t2.x) >> shifts) & 0xffu) * step.x;
-    n.hiY = origin.y + vec4((uvec4(t2.y) >> shifts) & 0xffu) * step.y;
-    n.hiZ = origin.z + vec4((uvec4(t2.z) >> shifts) & 0xffu) * step.z;
-    n.count = (uvec4(t1.w) >> shifts) & 0xffu;
-    n.index = VKP_NODE_TEXEL(b + 3);
-    return n;
+    int b = int(i * QUANTIZED_NODE_TEXELS);
+    return decodeQuantizedWideNode(VKP_NODE_TEXEL(b), VKP_NODE_TEXEL(b + 1), VKP_NODE_TEXEL(b + 2), VKP_NODE_TEXEL(b + 3));
 }
 #elif defined(VKP_BVH_WIDE)
 #include "shared/wide_bvh.h"

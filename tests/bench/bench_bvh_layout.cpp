@@ -7,7 +7,7 @@
 // (-DVKP_BVH_WIDE, shared/wide_bvh.h; same primitives, texel buffers), and three variants of it:
 // children in slot order instead of nearest first (-DVKP_WIDE_UNORDERED), inner children culled
 // again against the hit found in the node's leaves (-DVKP_WIDE_RECULL), and nodes quantized to
-// 64 bytes (-DVKP_BVH_WIDE_QUANTIZED, wide_quantized.h). A third case builds the 1M-triangle scene
+// 64 bytes (-DVKP_BVH_WIDE_QUANTIZED, shaders/tests/wide_quantized.h). A third case builds the 1M-triangle scene
 // with other BvhBuildOptions (leaf size, traversal cost) and times the 4-wide kernel on each. Runs are interleaved
 // (A B A B ...) and reported as rays/s ratios against the texel variant: a report, never a timed
 // assertion. What it asserts: every variant returns the same hits (t bit-exact, primitive, any-hit
@@ -43,7 +43,7 @@
 #include "test_paths.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
-#include "wide_quantized.h"
+#include "wide_quantized_pack.h"
 
 namespace vkp::test {
 namespace {
@@ -66,7 +66,7 @@ struct Variant {
     vk::DescriptorType dataType;  ///< descriptor type of bindings 1 and 2
     bool wide = false;            ///< nodes in the 4-wide layout (GpuWideNode)
     bool bda = false;             ///< nodes and primitives read through buffer device addresses (push constants)
-    bool quantized = false;       ///< 4-wide nodes quantized to 4 texels (wide_quantized.h)
+    bool quantized = false;       ///< 4-wide nodes quantized to 4 texels (shaders/tests/wide_quantized.h)
 };
 
 /// Buffers of one scene, bound to one pipeline per variant.
@@ -82,7 +82,7 @@ struct LayoutBench {
         : dev(d), rayCount(rs.size()), rays(d, rs.size() * 32, vk::BufferUsageFlagBits::eStorageBuffer),
           nodes(d, bvh.nodes.size() * sizeof(gpu::GpuNode), usage(d)),
           wideNodes(d, wide.size() * sizeof(gpu::GpuWideNode), usage(d)),
-          quantizedNodes(d, wide.size() * kQuantizedNodeTexels * sizeof(glm::uvec4), usage(d)),
+          quantizedNodes(d, anyQuantized(variants) ? wide.size() * gpu::QUANTIZED_NODE_TEXELS * sizeof(glm::uvec4) : 16, usage(d)),
           prims(d, bvh.prims.size() * sizeof(gpu::GpuPrim), usage(d)),
           out(d, rs.size() * sizeof(glm::uvec4), vk::BufferUsageFlagBits::eStorageBuffer) {
         std::vector<glm::vec4> data;
@@ -94,8 +94,10 @@ struct LayoutBench {
         nodes.upload(bvh.nodes.data(), bvh.nodes.size() * sizeof(gpu::GpuNode));
         prims.upload(bvh.prims.data(), bvh.prims.size() * sizeof(gpu::GpuPrim));
         wideNodes.upload(wide.data(), wide.size() * sizeof(gpu::GpuWideNode));
-        const std::vector<glm::uvec4> quantized = packWideQuantized(wide);
-        quantizedNodes.upload(quantized.data(), quantized.size() * sizeof(glm::uvec4));
+        if (anyQuantized(variants)) {
+            const std::vector<glm::uvec4> quantized = packWideQuantized(wide);
+            quantizedNodes.upload(quantized.data(), quantized.size() * sizeof(glm::uvec4));
+        }
         quantizedView = quantizedNodes.texelView();
         nodeView = nodes.texelView();
         wideView = wideNodes.texelView();
@@ -120,6 +122,9 @@ struct LayoutBench {
             push.push_back(BdaPush{v.bda ? (v.wide ? wideNodes.deviceAddress() : nodes.deviceAddress()) : 0,
                                    v.bda ? prims.deviceAddress() : 0});
         }
+    }
+    static bool anyQuantized(const std::vector<Variant>& variants) {
+        return std::any_of(variants.begin(), variants.end(), [](const Variant& v) { return v.quantized; });
     }
     /// The push constants of a BDA variant: node and primitive addresses (uvec2 each in the shader).
     struct BdaPush {
