@@ -8,6 +8,8 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "core/errors.h"
@@ -245,6 +247,29 @@ TEST(AovFiles, AccumulationFilesAndMergesKeepTheFeatureSums) {
     RenderState plain = b;
     plain.aov.clear();
     EXPECT_THROW(addStates({&a, &plain}, 0, 8), InputError);
+    // Files of an older vkpath, whose feature sums lack the indirect moments or the frame: the
+    // header's names altered in place (same length) make such a file from this one.
+    auto older = [&](const std::string& from, const std::string& to) {
+        std::ifstream in(file, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::size_t at = bytes.find(from + '\0');
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) bytes.replace(at, to.size(), to);
+        const fs::path old = test::scratchDir("aov_files") / "older.exr";
+        std::ofstream(old, std::ios::binary) << bytes;
+        try {
+            readAccumFile(old);
+            ADD_FAILURE() << "read a file without " << from;
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("older.exr: its feature sums (--aov) are from an older vkpath: no "), std::string::npos) << m;
+            EXPECT_NE(m.find(from), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+    };
+    older("aov_indirect.mean", "aov_indirect.MEAN");
+    older("aov_indirect.sq", "aov_indirect.SQ");
+    older("vkpath.aovFrame", "vkpath.aovFRAME");
     plain.sum.clear();  // a file without them reads back without them
     RenderState c = a;
     c.aov.clear();
