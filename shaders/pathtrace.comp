@@ -235,9 +235,11 @@ void main() {
     uvec2 pix;
     uint pixel;
     if (!adaptive) {
-        uint group = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
+        // The dispatch is the band's tiles: gl_NumWorkGroups.x of them per row.
+        uint tilesX = gl_NumWorkGroups.x;
+        uint group = gl_WorkGroupID.y * tilesX + gl_WorkGroupID.x;
         uint tile = (group * push.band.w) % push.band.z;  // host keeps the product below 2^32
-        pix = uvec2(tile % frame.tiles.x, tile / frame.tiles.x) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
+        pix = uvec2(tile % tilesX, tile / tilesX) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
         pix.y += push.band.x;
         if (pix.x >= width || pix.y >= push.band.x + push.band.y) return;
         pixel = pix.y * width + pix.x;

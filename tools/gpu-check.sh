@@ -116,7 +116,7 @@ if [ "$run_bench" = 1 ]; then
       s=$out/$name.json
       entry="{\"scene\": $(json_str "$scene"), \"size\": \"${size}x$size\", \"seconds\": $seconds"
       for k in spp rays_per_second rays_per_second_steady seconds_to_first_sample seconds_longest_dispatch \
-               samples_per_dispatch nonfinite_samples loop_guard_paths; do
+               samples_per_dispatch workgroup nonfinite_samples loop_guard_paths; do
         entry+=", \"$k\": $(json_field "$s" "$k")"
       done
       entry+="}"

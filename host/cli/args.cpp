@@ -73,7 +73,8 @@ render options:
   --light-sampling L      quads/triangles: auto (default: solid angle where the light looks large, else
                           area) | solid-angle (wherever precise) | area (the book's)
   --solid-angle-min SR    auto's switch: solid angle from points where area/distance^2 >= SR (default 0.1)
-  --workgroup WxH         the kernel's workgroup size (default 8x8; W, H in 1-64, W*H <= 1024)
+  --workgroup WxH|auto    the kernel's workgroup size (W, H in 1-64, W*H <= 1024; default auto: from the
+                          device's subgroup size, 8x8 for subgroups of up to 64 lanes)
   --tile-order O          scrambled (default: balances lavapipe's threads) | linear
   --variant V             auto (default: compile in only what the scene needs) | full
   --specialize W          host (default: the variant's constants baked into the kernel before the
@@ -211,10 +212,15 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             } else if (f == "--workgroup") {
                 const std::string s = value(f);
                 const std::size_t x = s.find('x');
-                if (x == std::string::npos) usage("--workgroup wants WxH, e.g. 16x8, got '" + s + "'");
-                a.render.workgroupX = parseUint(f, s.substr(0, x), 1, 64);
-                a.render.workgroupY = parseUint(f, s.substr(x + 1), 1, 64);
-                if (a.render.workgroupX * a.render.workgroupY > 1024) usage("--workgroup: W*H must be at most 1024, got '" + s + "'");
+                if (s == "auto") {
+                    a.render.workgroupX = a.render.workgroupY = 0;
+                } else {
+                    if (x == std::string::npos) usage("--workgroup wants WxH, e.g. 16x8, or auto, got '" + s + "'");
+                    a.render.workgroupX = parseUint(f, s.substr(0, x), 1, 64);
+                    a.render.workgroupY = parseUint(f, s.substr(x + 1), 1, 64);
+                    if (a.render.workgroupX * a.render.workgroupY > 1024)
+                        usage("--workgroup: W*H must be at most 1024, got '" + s + "'");
+                }
             } else if (f == "--tile-order") {
                 const std::string s = value(f);
                 if (s == "linear") a.render.linearTiles = true;

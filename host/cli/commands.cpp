@@ -27,6 +27,7 @@
 #include "render/renderer.h"
 #include "render/run_stats.h"
 #include "render/session.h"
+#include "render/workgroup.h"
 #include "scene/gltf.h"
 #include "scene/scene.h"
 #include "vk/device.h"
@@ -264,7 +265,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     if (log) std::fprintf(stderr, "vkpath: wrote %s (%zu rows)\n", a.errorLog.string().c_str(), log->rows());
 
     if (!a.statsJson.empty()) {
-        RunStats st = runStats(job, renderer.features().name(), r);
+        RunStats st = runStats(job, renderer.features(), r);
         st.secondsSceneLoad = secondsSceneLoad;
         st.secondsBvh = secondsBvh;
         st.secondsSetup = secondsSetup;
@@ -279,6 +280,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.driverName = d.driverName;
         st.driverInfo = d.driverInfo;
         st.vulkanVersion = apiVersionString(d.apiVersion);
+        st.subgroupSize = d.subgroupSize;
         if (const char* v = std::getenv("LP_NUM_THREADS")) st.lpNumThreads = v;
         if (const char* v = std::getenv("MESA_SHADER_CACHE_DIR")) st.mesaShaderCacheDir = v;
         if (reference) {
@@ -392,9 +394,12 @@ int runInfo(const CliArgs& a) {
         return kExitNoDevice;
     }
     const std::size_t bands = planBands(arrays, limits).size();
-    std::printf("device       %s: fits (%zu band%s of rows; storage-buffer range %s, texel-buffer elements %llu)\n",
+    const glm::uvec2 wg = kernelWorkgroup(arrays.features, limits);
+    std::printf("device       %s: fits (%zu band%s of rows; storage-buffer range %s, texel-buffer elements %llu); "
+                "workgroup %ux%u%s, subgroups of %u lanes\n",
                 d.name.c_str(), bands, bands == 1 ? "" : "s", megabytes(limits.maxStorageBufferRange).c_str(),
-                static_cast<unsigned long long>(limits.maxTexelBufferElements));
+                static_cast<unsigned long long>(limits.maxTexelBufferElements), wg.x, wg.y,
+                arrays.features.workgroupX ? "" : " (auto)", d.subgroupSize);
     return kExitOk;
 }
 
@@ -405,10 +410,10 @@ int runDevices(const CliArgs& a) {
     const DeviceChoice def = selectDevice(devs, a.device);
     for (const DeviceInfo& d : devs) {
         const std::string why = unusableReason(d);
-        std::printf("%u%s %s\n    type %s, driver %s%s%s, Vulkan %s%s\n", d.index,
+        std::printf("%u%s %s\n    type %s, driver %s%s%s, Vulkan %s, subgroups of %u lanes%s\n", d.index,
                     def.index && *def.index == d.index ? " (default)" : "", d.name.c_str(), kindName(d.kind),
                     d.driverName.empty() ? "?" : d.driverName.c_str(), d.driverInfo.empty() ? "" : " / ",
-                    d.driverInfo.c_str(), apiVersionString(d.apiVersion).c_str(),
+                    d.driverInfo.c_str(), apiVersionString(d.apiVersion).c_str(), d.subgroupSize,
                     why.empty() ? "" : (", unusable: " + why).c_str());
     }
     return def.index ? kExitOk : kExitNoDevice;

@@ -44,7 +44,9 @@ struct Features {
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;
     float solidAngleMinSize = kSolidAngleMinSize;  ///< for LightSampling::Auto (`--solid-angle-min`)
-    std::uint32_t workgroupX = 8, workgroupY = 8;  ///< the kernel's workgroup size (`--workgroup`)
+    /// The kernel's workgroup size (`--workgroup`); 0x0 until a device is known: the renderer runs
+    /// kernelWorkgroup's (render/workgroup.h), which is what specConstants() then holds.
+    std::uint32_t workgroupX = 0, workgroupY = 0;
 
     bool hasShape(std::uint32_t kind) const { return (shapes >> kind) & 1u; }
     bool hasMaterial(std::uint32_t type) const { return (materials >> type) & 1u; }

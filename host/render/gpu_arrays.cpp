@@ -11,6 +11,7 @@
 #include "render/adaptive.h"
 #include "render/environment.h"
 #include "render/ggx_albedo_table.h"
+#include "render/workgroup.h"
 #include "render/sheen_albedo_table.h"
 #include "render/gpu_scene.h"
 #include "render/light_table.h"
@@ -42,6 +43,7 @@ DeviceLimits deviceLimits(const DeviceInfo& d) {
         l.maxComputeWorkGroupSize[i] = d.maxComputeWorkGroupSize[i];
     }
     l.maxComputeWorkGroupInvocations = d.maxComputeWorkGroupInvocations;
+    l.subgroupSize = d.subgroupSize;
     return l;
 }
 
@@ -86,7 +88,7 @@ GpuArrays packGpuArrays(const Scene& scene, const FlatBvh& bvh, const RenderOpti
     // that came from flattenBvh alone.
     a.nodes = bvh.wideNodes.empty() ? buildWideNodes(bvh) : bvh.wideNodes;
     a.prims = bvh.prims;
-    a.frame = packFrame(scene, options.lightPick, glm::uvec2(options.workgroupX, options.workgroupY));
+    a.frame = packFrame(scene, options.lightPick);
     a.frame.origin.w = gpu::rayOffsetScale(sceneExtent(bvh));
     // Material texels, then (for glTF BRDF variants) the GGX albedo table at texel counts.w.
     for (const gpu::GpuMaterial& m : packMaterials(scene.materials))
@@ -206,8 +208,8 @@ std::uint64_t widestRowBytes(const GpuArrays& a) {
 }
 
 /// Rows a band is a multiple of: adaptive sampling's 8-row tiles and the workgroup's height.
-std::uint32_t bandRowUnit(const GpuArrays& a) {
-    const std::uint64_t h = std::max<std::uint32_t>(a.features.workgroupY, 1);
+std::uint32_t bandRowUnit(const GpuArrays& a, const DeviceLimits& l) {
+    const std::uint64_t h = std::max<std::uint32_t>(kernelWorkgroup(a.features, l).y, 1);
     return std::uint32_t(8 / gcd(8, h) * h);
 }
 }  // namespace
@@ -215,7 +217,7 @@ std::uint32_t bandRowUnit(const GpuArrays& a) {
 std::vector<Band> planBands(const GpuArrays& a, const DeviceLimits& l) {
     const std::uint64_t rowBytes = widestRowBytes(a), limit = bandBytesLimit(l);
     if (rowBytes == 0 || std::uint64_t(a.height) * rowBytes <= limit) return {Band{0, a.height}};
-    const std::uint32_t unit = bandRowUnit(a);
+    const std::uint32_t unit = bandRowUnit(a, l);
     const std::uint64_t rows = limit / rowBytes / unit * unit;
     if (rows == 0) return {};
     std::vector<Band> bands;
@@ -240,12 +242,11 @@ std::uint64_t GpuArrays::pixelBytes() const {
 
 std::string fitProblem(const GpuArrays& a, const DeviceLimits& l) {
     const std::string file = a.sceneName + ": ";
-    // The workgroup: every invocation of the kernel's own size.
-    const Features& f = a.features;
-    if (f.workgroupX == 0 || f.workgroupY == 0 || f.workgroupX > l.maxComputeWorkGroupSize[0] ||
-        f.workgroupY > l.maxComputeWorkGroupSize[1] ||
-        std::uint64_t(f.workgroupX) * f.workgroupY > l.maxComputeWorkGroupInvocations)
-        return "workgroup " + size(f.workgroupX, f.workgroupY) + " is beyond this device's limits (maxComputeWorkGroupSize " +
+    // The workgroup: every invocation of the kernel's own size (`--workgroup`, else autoWorkgroup's).
+    const glm::uvec2 wg = kernelWorkgroup(a.features, l);
+    if (wg.x == 0 || wg.y == 0 || wg.x > l.maxComputeWorkGroupSize[0] || wg.y > l.maxComputeWorkGroupSize[1] ||
+        std::uint64_t(wg.x) * wg.y > l.maxComputeWorkGroupInvocations)
+        return "workgroup " + size(wg.x, wg.y) + " is beyond this device's limits (maxComputeWorkGroupSize " +
                size(l.maxComputeWorkGroupSize[0], l.maxComputeWorkGroupSize[1]) + ", maxComputeWorkGroupInvocations " +
                std::to_string(l.maxComputeWorkGroupInvocations) + ")";
     // Read-only scene data: each texel buffer within maxTexelBufferElements, with the messages that
@@ -276,7 +277,7 @@ std::string fitProblem(const GpuArrays& a, const DeviceLimits& l) {
     // dispatch that covers the image.
     const std::string image = file + "a " + size(a.width, a.height) + " image";
     if (planBands(a, l).empty()) {
-        const std::uint32_t rows = std::min(a.height, bandRowUnit(a));
+        const std::uint32_t rows = std::min(a.height, bandRowUnit(a, l));
         for (const BufferSize& s : a.sizes()) {
             const std::uint64_t perPixel = a.bytesPerPixel(s.binding->binding);
             const std::uint64_t bytes = perPixel * a.width * rows;
@@ -293,11 +294,11 @@ std::string fitProblem(const GpuArrays& a, const DeviceLimits& l) {
     // The dispatch of the tallest band (the first).
     const std::vector<Band> bands = planBands(a, l);
     const std::uint64_t bandRows = bands.empty() ? a.height : bands.front().rows;
-    const std::uint64_t groupsX = (a.width + f.workgroupX - 1) / f.workgroupX, groupsY = (bandRows + f.workgroupY - 1) / f.workgroupY;
+    const std::uint64_t groupsX = (a.width + wg.x - 1) / wg.x, groupsY = (bandRows + wg.y - 1) / wg.y;
     const std::uint64_t adaptiveRows = (groupsX * groupsY + kAdaptiveGroupsPerRow - 1) / kAdaptiveGroupsPerRow;
     if (groupsX > l.maxComputeWorkGroupCount[0] || groupsY > l.maxComputeWorkGroupCount[1] ||
         (a.adaptive && (kAdaptiveGroupsPerRow > l.maxComputeWorkGroupCount[0] || adaptiveRows > l.maxComputeWorkGroupCount[1])))
-        return image + " with workgroup " + size(f.workgroupX, f.workgroupY) + " needs " +
+        return image + " with workgroup " + size(wg.x, wg.y) + " needs " +
                size(std::uint32_t(groupsX), std::uint32_t(groupsY)) + " workgroups, more than this device's maxComputeWorkGroupCount " +
                size(l.maxComputeWorkGroupCount[0], l.maxComputeWorkGroupCount[1]);
     // Memory: the device's largest heap, and the host's (read-back sums and the image).

@@ -39,6 +39,7 @@ struct DeviceLimits {
     std::uint32_t maxComputeWorkGroupCount[2] = {0, 0};
     std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};
     std::uint32_t maxComputeWorkGroupInvocations = 0;
+    std::uint32_t subgroupSize = 0;  ///< lanes of a subgroup (0: not reported): the automatic workgroup's
 };
 
 /// The limits of a device as vk/instance.cpp described it, with this host's physical memory.

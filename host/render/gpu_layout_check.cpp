@@ -20,9 +20,9 @@ static_assert(sizeof(GpuLight) == GPU_LIGHT_TEXELS * 16, "GpuLight: GPU_LIGHT_TE
 static_assert(sizeof(GpuPunctualLight) == GPU_PUNCTUAL_TEXELS * 16 && offsetof(GpuPunctualLight, q3) == 48,
               "GpuPunctualLight: GPU_PUNCTUAL_TEXELS vec4 texels, in order");
 static_assert(GPU_PUNCTUAL_TEXELS % GPU_LIGHT_TEXELS == 0, "punctual records are whole GpuLight entries of the lights buffer");
-static_assert(sizeof(GpuFrame) == 14 * 16, "GpuFrame: fourteen vec4 members (std140)");
-static_assert(offsetof(GpuFrame, env) == 10 * 16 && offsetof(GpuFrame, envSize) == 11 * 16 &&
-                  offsetof(GpuFrame, punctual) == 12 * 16 && offsetof(GpuFrame, media) == 13 * 16,
+static_assert(sizeof(GpuFrame) == 13 * 16, "GpuFrame: thirteen vec4 members (std140)");
+static_assert(offsetof(GpuFrame, env) == 9 * 16 && offsetof(GpuFrame, envSize) == 10 * 16 &&
+                  offsetof(GpuFrame, punctual) == 11 * 16 && offsetof(GpuFrame, media) == 12 * 16,
               "GpuFrame member order");
 static_assert(sizeof(GpuInstance) == GPU_INSTANCE_TEXELS * 16, "GpuInstance: GPU_INSTANCE_TEXELS vec4 texels");
 static_assert(offsetof(GpuInstance, w2o0) == 16 && offsetof(GpuInstance, o2w0) == 4 * 16 && offsetof(GpuInstance, o2w2) == 6 * 16,

@@ -49,7 +49,7 @@ std::uint32_t tileStride(std::uint32_t n) {
     return std::uint32_t(s);
 }
 
-gpu::GpuFrame packFrame(const Scene& scene, LightPick pick, glm::uvec2 workgroup) {
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick) {
     gpu::GpuFrame f{};
     packCamera(scene.camera, f);
     f.background = v4(scene.render.background);
@@ -57,8 +57,6 @@ gpu::GpuFrame packFrame(const Scene& scene, LightPick pick, glm::uvec2 workgroup
     const std::uint32_t punctual = std::uint32_t(scene.punctualLights.size());
     f.counts = glm::uvec4(std::uint32_t(scene.lights.size()), scene.render.rouletteDepth, emittingLightCount(scene) + punctual, 0);
     f.punctual = glm::uvec4(punctual, 0, 0, 0);
-    const std::uint32_t groupsX = (scene.camera.width + workgroup.x - 1) / workgroup.x;
-    f.tiles = glm::uvec4(groupsX, 0, 0, 0);
     const double rot = glm::radians(double(scene.environment.rotateY));
     f.env = glm::vec4(float(std::cos(rot)), float(std::sin(rot)), float(envPickProbability(scene, pick)),
                       hasEnvironmentLight(scene) ? 1.0f : 0.0f);

@@ -18,9 +18,9 @@ void packCamera(const Camera& cam, gpu::GpuFrame& frame);
 std::uint32_t tileStride(std::uint32_t n);
 
 /// Everything in GpuFrame for a render of scene at its (possibly overridden) settings; `pick`
-/// decides the environment's share of next-event estimation (envPickProbability); tiles of
-/// `workgroup` pixels (their order within each band: GpuPush::band, render/renderer.cpp).
-gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power, glm::uvec2 workgroup = glm::uvec2(8, 8));
+/// decides the environment's share of next-event estimation (envPickProbability). Nothing in it
+/// depends on the workgroup size or the tile order (GpuPush::band, render/renderer.cpp).
+gpu::GpuFrame packFrame(const Scene& scene, LightPick pick = LightPick::Power);
 
 std::vector<gpu::GpuMaterial> packMaterials(const std::vector<Material>& materials);
 

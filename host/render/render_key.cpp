@@ -48,13 +48,10 @@ RenderKey renderKey(const GpuArrays& arrays, const RenderOptions& options) {
     char kernelHex[24];
     std::snprintf(kernelHex, sizeof kernelHex, "%016llx", static_cast<unsigned long long>(kernel.h));
     add("kernel", kernelHex);
-    Fnv1a h;
-    gpu::GpuFrame frame = arrays.frame;
-    frame.tiles = glm::uvec4(0);  // workgroups per row: the workgroup size, a speed option
+    Fnv1a h;  // nothing in the arrays depends on the workgroup size or the tile order (speed options)
     for (const KernelBinding& b : kKernelBindings) {
         if (b.binding == VKP_BINDING_ACTIVE) continue;  // the first active-pixel list: every pixel
-        const std::span<const std::byte> data =
-            b.binding == VKP_BINDING_FRAME ? std::as_bytes(std::span<const gpu::GpuFrame>(&frame, 1)) : arrays.hostData(b.binding);
+        const std::span<const std::byte> data = arrays.hostData(b.binding);
         h.add(b.binding);
         h.add(data.size());
         h.add(data);

@@ -58,10 +58,11 @@ struct RenderOptions {
     LightPick lightPick = LightPick::Power;             ///< how NEE picks an emitter (`--light-pick`)
     LightSampling lightSampling = LightSampling::Auto;  ///< NEE on quads/triangles (`--light-sampling`)
     float solidAngleMinSize = kSolidAngleMinSize;       ///< Auto's switch, sr (`--solid-angle-min`)
-    /// Workgroup size of the kernel (x * y invocations, each one pixel) and the order its tiles are
-    /// visited in: scrambled (default; balances lavapipe's threads) or row by row (`--tile-order
-    /// linear`). Neither changes the image, only the speed.
-    std::uint32_t workgroupX = 8, workgroupY = 8;
+    /// Workgroup size of the kernel (x * y invocations, each one pixel; 0x0 = chosen from the
+    /// device's subgroup size, render/workgroup.h autoWorkgroup) and the order its tiles are visited
+    /// in: scrambled (default; balances lavapipe's threads) or row by row (`--tile-order linear`).
+    /// Neither changes the image, only the speed.
+    std::uint32_t workgroupX = 0, workgroupY = 0;
     bool linearTiles = false;
     bool fullVariant = false;  ///< compile every feature in (`--variant full`)
     /// Bake the variant's specialization constants into the kernel's SPIR-V before the driver

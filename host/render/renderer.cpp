@@ -13,6 +13,7 @@
 #include "render/gpu_scene.h"
 #include "render/kernel_bindings.h"
 #include "render/render_state.h"
+#include "render/workgroup.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 
@@ -111,6 +112,9 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
     const DeviceLimits own = deviceLimits(device.info());
     const DeviceLimits& lim = limits ? *limits : own;
     if (const std::string problem = fitProblem(arrays, lim); !problem.empty()) throw DeviceError(problem);
+    const glm::uvec2 workgroup = kernelWorkgroup(arrays.features, lim);  // `--workgroup`, else the device's
+    features_.workgroupX = workgroup.x;
+    features_.workgroupY = workgroup.y;
     impl_->aovFrame = arrays.aovFrame;
     // The read-only buffers once, uploaded; the per-pixel ones per band, zeroed below.
     ComputePipelineDesc desc;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "render/features.h"
 #include "render/render_job.h"
 
 namespace vkp {
@@ -67,7 +68,7 @@ std::string jsonString(const std::string& s) {
     return r + "\"";
 }
 
-RunStats runStats(const RenderJob& job, const std::string& variant, const SessionResult& r) {
+RunStats runStats(const RenderJob& job, const Features& kernel, const SessionResult& r) {
     const RenderOptions& o = job.options;
     RunStats st;
     st.version = VKPATH_VERSION;
@@ -78,9 +79,9 @@ RunStats runStats(const RenderJob& job, const std::string& variant, const Sessio
     st.lightPick = lightPickName(o.lightPick);
     st.lightSampling = lightSamplingName(o.lightSampling);
     st.solidAngleMinSize = o.lightSampling == LightSampling::Auto ? o.solidAngleMinSize : 0.0f;
-    st.workgroup = std::to_string(o.workgroupX) + "x" + std::to_string(o.workgroupY);
+    st.workgroup = std::to_string(kernel.workgroupX) + "x" + std::to_string(kernel.workgroupY);
     st.tileOrder = o.linearTiles ? "linear" : "scrambled";
-    st.variant = variant;
+    st.variant = kernel.name();
     st.fullVariant = o.fullVariant;
     st.width = job.scene.camera.width;
     st.height = job.scene.camera.height;
@@ -175,6 +176,7 @@ std::string runStatsJson(const RunStats& s) {
         dw.str("driver", s.driverName);
         dw.str("driver_info", s.driverInfo);
         dw.str("vulkan", s.vulkanVersion);
+        dw.raw("subgroup_size", num(std::uint64_t(s.subgroupSize)));
         dw.close();
         w.raw("device", d.str());
     }

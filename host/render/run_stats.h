@@ -22,7 +22,7 @@ struct RunStats {
     std::string lightPick = "power";             ///< power | uniform (--light-pick)
     std::string lightSampling = "auto";          ///< auto | solid-angle | area (--light-sampling)
     float solidAngleMinSize = 0.0f;              ///< auto's switch (sr; --solid-angle-min), else 0
-    std::string workgroup = "8x8";               ///< --workgroup
+    std::string workgroup = "8x8";               ///< the one the kernel ran with (--workgroup, else the device's)
     std::string tileOrder = "scrambled";         ///< scrambled | linear (--tile-order)
     std::string variant;   ///< Features::name() of the pipeline
     bool fullVariant = false;
@@ -53,6 +53,7 @@ struct RunStats {
     std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
     // The device.
     std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;
+    std::uint32_t subgroupSize = 0;  ///< the device's subgroup lanes (0: not reported)
     /// LP_NUM_THREADS and MESA_SHADER_CACHE_DIR as set in the environment (empty if unset).
     std::string lpNumThreads, mesaShaderCacheDir;
     /// The final errors, when rendered with --reference.
@@ -69,13 +70,14 @@ struct RunStats {
     std::uint64_t samples() const { return samplesTaken ? samplesTaken : pixels() * spp; }
 };
 
+struct Features;
 struct RenderJob;
 struct SessionResult;
 
-/// The stats of a finished render: what `job` asked for and what the session did (`variant`: the
-/// pipeline's Features::name). The times of the steps before the session, the device, the memory
-/// and the error are the caller's to fill.
-RunStats runStats(const RenderJob& job, const std::string& variant, const SessionResult& result);
+/// The stats of a finished render: what `job` asked for and what the session did (`kernel`: the
+/// pipeline's Features, Renderer::features, for the variant and the workgroup it ran with). The
+/// times of the steps before the session, the device, the memory and the error are the caller's.
+RunStats runStats(const RenderJob& job, const Features& kernel, const SessionResult& result);
 
 /// The stats as a JSON object (pretty-printed, keys in a fixed order, non-finite numbers as null).
 /// Top-level keys scripts may rely on: spp, samples, rays, seconds_total, seconds_render,

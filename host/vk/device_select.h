@@ -26,6 +26,7 @@ struct DeviceInfo {
     std::uint32_t maxComputeWorkGroupInvocations = 0;
     std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};   ///< x, y
     std::uint32_t maxComputeWorkGroupCount[2] = {0, 0};  ///< x, y
+    std::uint32_t subgroupSize = 0;  ///< VkPhysicalDeviceSubgroupProperties::subgroupSize (0: not reported)
     std::uint64_t maxMemoryAllocationSize = 0;  ///< bytes of one allocation (Vulkan 1.1; 0: not reported)
     std::uint64_t deviceLocalBytes = 0;         ///< size of the largest device-local memory heap
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer

@@ -81,11 +81,12 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
             d.deviceLocalBytes = std::max<std::uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[i].size);
     if (props.apiVersion >= VK_API_VERSION_1_2) {
         auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
-                                       vk::PhysicalDeviceMaintenance3Properties>();
+                                       vk::PhysicalDeviceMaintenance3Properties, vk::PhysicalDeviceSubgroupProperties>();
         const auto& drv = chain.get<vk::PhysicalDeviceDriverProperties>();
         d.driverName = drv.driverName.data();
         d.driverInfo = drv.driverInfo.data();
         d.maxMemoryAllocationSize = chain.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize;
+        d.subgroupSize = chain.get<vk::PhysicalDeviceSubgroupProperties>().subgroupSize;
         auto features = pd.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features>();
         d.bufferDeviceAddress = features.get<vk::PhysicalDeviceVulkan12Features>().bufferDeviceAddress;
     }

@@ -129,8 +129,6 @@ struct GpuFrame {
     uvec4 counts;     // x: number of sampled objects (lights), y: Russian-roulette start depth,
                       // z: number of them that emit (power-proportional picks need > 0),
                       // w: texel of the GGX albedo table in the materials buffer (after the materials)
-    uvec4 tiles;      // x: workgroups per row of the image (tiles of workgroup size); y, z, w: 0
-                      // (the tiles of each band and their order: GpuPush::band)
     vec4 env;         // environment light (lib/environment.glsl): x, y: cos, sin of rotate_y;
                       // z: probability that next-event estimation picks the environment instead
                       // of an emitter (host/render/environment.h); w: 1 if escaping rays see

@@ -11,6 +11,7 @@
 #include "gpu_env.h"
 #include "image_checks.h"
 #include "render/gpu_arrays.h"
+#include "render/workgroup.h"
 #include "scene/gltf.h"
 #include "render_helpers.h"
 #include "test_paths.h"
@@ -144,7 +145,7 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
     scene.camera.height = 13;
     for (double adaptive : {0.0, 0.5}) {
         PixelSums first;
-        for (const auto& [wx, wy, linear] : {std::tuple{8u, 8u, false}, std::tuple{8u, 8u, true}, std::tuple{16u, 4u, false},
+        for (const auto& [wx, wy, linear] : {std::tuple{0u, 0u, false}, std::tuple{8u, 8u, true}, std::tuple{16u, 4u, false},
                                              std::tuple{3u, 5u, true}, std::tuple{32u, 32u, false}, std::tuple{1u, 1u, false}}) {
             RenderOptions o;
             o.sampler = Sampler::Mis;
@@ -155,9 +156,18 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
             o.adaptiveThreshold = adaptive;
             o.adaptiveMinSpp = 4;
             TestRender r = makeRender(dev, scene, o);
+            if (wx == 0) {  // auto: the device's (render/workgroup.h), which the kernel then runs with
+                const std::uint32_t lanes = dev.info().subgroupSize;
+                EXPECT_TRUE(lanes != 0 && (lanes & (lanes - 1)) == 0) << "Vulkan 1.1 reports a power of two: " << lanes;
+                const glm::uvec2 expected = autoWorkgroup(lanes, deviceLimits(dev.info()));
+                EXPECT_EQ(r.renderer->features().workgroupX, expected.x);
+                EXPECT_EQ(r.renderer->features().workgroupY, expected.y);
+                EXPECT_EQ(r.renderer->features().specConstants().at(VKP_SPEC_WORKGROUP_X), expected.x);
+            }
             r.renderer->addSamples(24);
             const PixelSums s = r.renderer->readSums();
-            const std::string what = std::to_string(wx) + "x" + std::to_string(wy) + (linear ? " linear" : " scrambled") +
+            const std::string what = (wx ? std::to_string(wx) + "x" + std::to_string(wy) : std::string("auto")) +
+                                     (linear ? " linear" : " scrambled") +
                                      (adaptive > 0 ? " adaptive" : "");
             if (first.sum.empty()) {
                 first = s;

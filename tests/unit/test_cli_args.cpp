@@ -96,13 +96,16 @@ TEST(CliArgs, LightPickAndSampling) {
 
 TEST(CliArgs, WorkgroupAndTileOrder) {
     const CliArgs d = parseArgs({"render", "s.json"});
-    EXPECT_EQ(d.render.workgroupX, 8u);
-    EXPECT_EQ(d.render.workgroupY, 8u);
+    EXPECT_EQ(d.render.workgroupX, 0u);  // auto: the renderer asks the device (render/workgroup.h)
+    EXPECT_EQ(d.render.workgroupY, 0u);
     EXPECT_FALSE(d.render.linearTiles);
     const CliArgs a = parseArgs({"render", "s.json", "--workgroup", "16x4", "--tile-order", "linear"});
     EXPECT_EQ(a.render.workgroupX, 16u);
     EXPECT_EQ(a.render.workgroupY, 4u);
     EXPECT_TRUE(a.render.linearTiles);
+    const CliArgs back = parseArgs({"render", "s.json", "--workgroup", "16x4", "--workgroup", "auto"});
+    EXPECT_EQ(back.render.workgroupX, 0u);
+    EXPECT_EQ(back.render.workgroupY, 0u);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "16"}).find("--workgroup wants WxH"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "0x8"}).find("--workgroup"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--workgroup", "64x32"}).find("at most 1024"), std::string::npos);

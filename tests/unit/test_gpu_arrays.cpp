@@ -27,6 +27,7 @@ DeviceLimits lavapipe() {
     l.maxComputeWorkGroupCount[0] = l.maxComputeWorkGroupCount[1] = 65535;
     l.maxComputeWorkGroupSize[0] = l.maxComputeWorkGroupSize[1] = 1024;
     l.maxComputeWorkGroupInvocations = 1024;
+    l.subgroupSize = 8;
     return l;
 }
 
@@ -132,6 +133,14 @@ TEST(GpuArrays, AnImageBeyondOneStorageBindingIsSplitIntoBands) {
         EXPECT_EQ(bands[i].firstRow, 40u * i);
         EXPECT_EQ(bands[i].rows, i < 4 ? 40u : 10u);
     }
+    // The automatic workgroup is the device's: subgroups of 128 lanes give 8x16, so bands of 64 rows
+    // (79 fit; multiples of lcm(8, 16)).
+    l.subgroupSize = 128;
+    const std::vector<Band> tall = planBands(pack(sized("cornell-classic.json", 64, 170)).arrays, l);
+    ASSERT_EQ(tall.size(), 3u);
+    EXPECT_EQ(tall[0].rows, 64u);
+    EXPECT_EQ(tall[2].firstRow, 128u);
+    EXPECT_EQ(tall[2].rows, 42u);
     // Adaptive sampling's buffers split with the others.
     o = RenderOptions{};
     o.adaptiveThreshold = 0.05;
@@ -164,6 +173,11 @@ TEST(GpuArrays, DispatchesBeyondTheWorkgroupCountAreRefused) {
     const std::string m = fitProblem(pack(sized("cornell-classic.json", 64, 801)).arrays, l);
     expectOneLine(m);
     EXPECT_NE(m.find("8x101 workgroups, more than this device's maxComputeWorkGroupCount 65535x100"), std::string::npos) << m;
+    // The automatic workgroup is the device's: 8x16 for subgroups of 128 lanes, so 1600 rows fit.
+    l.subgroupSize = 128;
+    EXPECT_EQ(fitProblem(pack(sized("cornell-classic.json", 64, 1600)).arrays, l), "");
+    const std::string tall = fitProblem(pack(sized("cornell-classic.json", 64, 1601)).arrays, l);
+    EXPECT_NE(tall.find("with workgroup 8x16 needs 8x101 workgroups"), std::string::npos) << tall;
 }
 
 TEST(GpuArrays, AWorkgroupBeyondTheDeviceIsRefused) {
