@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
 # With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh), valgrind
 # (tools/instructions-per-sample.sh) and libembree-dev (Embree 3: the suite's reference tracer,
-# tests/bench/embree_reference); with --reference also Blender (the `reference` tests); with
+# tests/bench/embree_reference); with --reference also Blender (the `reference` tests, the suite's `cycles` part); with
 # --farm also Slurm and munge (the `farm` test); with --fuzz also clang and libFuzzer (tools/fuzz.sh).
 # Options combine.
 # Idempotent: does nothing (and needs no network) when everything is already installed.

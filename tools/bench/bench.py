@@ -18,11 +18,15 @@ spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
   6. the denoiser (issue 17): renders of exactly 16 and 64 spp with --denoise: the raw and denoised
      relMSE, their ratio (target: at most 0.1), and the denoiser's seconds over the time of 4 spp
      (target: at most 1); the targets are reported as met or not, never failed;
+  7. where Blender is installed and the scene has a Cycles twin (cycles.py: cornell-classic), the time
+     to Cycles' error (issue 18): Cycles renders CYCLES_SPP spp, timed by its own render call; vkpath
+     renders until its MSE against the same Cycles reference is as low; the ratio of the times
+     (target: at most 0.4) is reported, never failed;
 and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
 
 Usage: bench.py [--quick] --vkpath BUILD/vkpath [--embree BUILD/tests/bench/embree_reference | --no-embree]
                 [--out DIR] [--cache DIR] [--scenes a,b] [--refresh-references] [--ref-budget S]
-                [--curve-seconds S] [--embree-seconds S] [--parts curves,scaling,settings,embree,denoise]
+                [--curve-seconds S] [--embree-seconds S] [--parts curves,scaling,settings,embree,denoise,cycles]
 Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
 python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
 """
@@ -45,6 +49,7 @@ except ImportError as e:
     sys.exit(77)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cycles  # noqa: E402
 import embree  # noqa: E402
 import metrics  # noqa: E402
 import pfm  # noqa: E402
@@ -71,11 +76,12 @@ MODES = {
     # curve: seconds of rendering per sampler; scaling: per thread/variant run; ref_budget: seconds
     # for one scene's reference; mesh: the dense-mesh grid (2 * nu * (nv - 1) triangles).
     "full": dict(curve=60.0, scaling=20.0, settings=20.0, ref_budget=2700.0, pilot_spp=16, mesh=(1024, 512),
-                 load_timeout=900),
+                 load_timeout=900, cycles_ref_spp=8192),
     "quick": dict(curve=6.0, scaling=3.0, settings=3.0, ref_budget=150.0, pilot_spp=16, mesh=(128, 64),
-                  load_timeout=120),
+                  load_timeout=120, cycles_ref_spp=2048),
 }
-PARTS = ("curves", "scaling", "settings", "embree", "denoise")
+PARTS = ("curves", "scaling", "settings", "embree", "denoise", "cycles")
+CYCLES_SPP = 256  # issue 18: the error of Cycles at 256 spp, against a Cycles reference (cfg cycles_ref_spp)
 DENOISE_SPP = (16, 64)   # the denoise part's renders
 DENOISE_TARGET = 0.1     # issue 17: the denoised relMSE at most a tenth of the raw image's at the same spp ...
 DENOISE_TIME_SPP = 4     # ... and the denoiser's own time at most that of 4 spp at the same size
@@ -283,6 +289,44 @@ def bench_embree(vk, em, scene, runs, wh, seconds, startup, env, name, failures)
     return out
 
 
+def bench_cycles(vk, cy, name, scene, size, cfg, args, runs, env, startup, failures):
+    """The time to Cycles' error (cycles.py): Cycles' CYCLES_SPP-spp render and its render time, then
+    vkpath (default sampler, same thread count) with --reference set to the same Cycles reference
+    until at least 3x Cycles' time; vkpath's time to Cycles' MSE from its error log (seconds from
+    process start). Cycles' and vkpath's image means against the reference's are reported too (a
+    bias between the renderers would show there and hold vkpath's error above Cycles')."""
+    W, H = size
+    if W != H:
+        raise cycles.CyclesError("the Cornell twin renders square images only, not %dx%d" % (W, H))
+    threads = os.cpu_count() or 1
+    ref = cycles.reference(cy, name, cycles.TWINS[name], W, cfg["cycles_ref_spp"], threads, args.cache, log)
+    image, seconds = cy.render(cycles.TWINS[name], os.path.join(runs, "cycles-run.pfm"), W, CYCLES_SPP,
+                               cycles.RUN_SEED, threads)
+    mse = metrics.mse(image, ref["image"])
+    logf = os.path.join(runs, "cycles-pair-vkpath.csv")
+    budget = 3.0 * seconds + startup + 2.0
+    st = vk.render(scene, runs, "cycles-pair-vkpath", ["--width", W, "--height", H, "--spp", BIG_SPP, "--time",
+                                                       "%.3f" % budget, "--reference", ref["path"], "--error-log", logf,
+                                                       "-o", "cycles-pair-vkpath.pfm"], dict(env, LP_NUM_THREADS=threads))
+    rows = vkrun.read_error_log(logf)
+    out = cycles.result(mse, seconds, [(r["seconds"], r["rmse"] ** 2) for r in rows], ref["floor_mse"])
+    ref_mean = ref["image"].reshape(-1, 3).mean(axis=0)
+    vk_mean = numpy.array([rows[-1]["mean_r"], rows[-1]["mean_g"], rows[-1]["mean_b"]])
+    out.update(blender=cy.version, threads=threads, size="%dx%d" % (W, H), cycles_spp=CYCLES_SPP,
+               reference_spp=ref["spp"], vkpath_spp=st["spp"], vkpath_samples_per_second=steady(st),
+               vkpath_mean_rel_diff=float(numpy.max(numpy.abs(vk_mean / ref_mean - 1.0))),
+               cycles_mean_rel_diff=float(numpy.max(numpy.abs(image.reshape(-1, 3).mean(axis=0) / ref_mean - 1.0))))
+    for bad in ("nonfinite_samples", "loop_guard_paths"):
+        if st[bad]:
+            failures.append("%s/cycles pair: %d %s" % (name, st[bad], bad))
+    log("  time to Cycles' error (MSE %.3g at %d spp in %.2f s): vkpath %s, ratio %s (target %.1f); image means "
+        "within %.2f%% (vkpath) and %.2f%% (Cycles) of the reference's" % (
+            mse, CYCLES_SPP, seconds, "%.2f s" % out["vkpath_seconds"] if out["vkpath_seconds"] else "not reached",
+            "%.2fx" % out["ratio"] if out["ratio"] is not None else "—", cycles.TARGET,
+            100 * out["vkpath_mean_rel_diff"], 100 * out["cycles_mean_rel_diff"]))
+    return out
+
+
 def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     W, H = size
     res = {"name": name, "size": "%dx%d" % (W, H)}
@@ -385,6 +429,11 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
                                                                            + startup), env, name, failures, args.settings)
     if "denoise" in args.parts:
         res["denoise"] = bench_denoise(vk, scene, runs, wh, ref, env, name, failures)
+    if "cycles" in args.parts and name in cycles.TWINS:
+        if args.cycles is None:
+            res["cycles"] = {"refused": args.cycles_missing}
+        else:
+            res["cycles"] = bench_cycles(vk, args.cycles, name, scene, size, cfg, args, runs, env, startup, failures)
     if curves:
         report.write_curves_csv(os.path.join(args.out, name + ".csv"), name, curves, ref)
     return res, curves
@@ -481,6 +530,13 @@ def main():
             args.embree_ref = embree.EmbreeReference(args.embree, log)
         except embree.EmbreeError as e:
             log("bench: %s: no ratio to Embree" % e)
+    args.cycles, args.cycles_missing = None, None
+    if "cycles" in args.parts:
+        try:
+            args.cycles = cycles.Cycles(log=log)
+        except cycles.CyclesError as e:
+            args.cycles_missing = str(e)
+            log("bench: %s" % e)
     load_before = load_average()
     log("bench: %s mode, vkpath %s, samplers %s (reference: %s), results in %s" %
         (mode, vk.version, ", ".join(vk.samplers), vk.default_sampler, args.out))
@@ -501,8 +557,8 @@ def main():
             if not args.references_only:
                 with open(os.path.join(workdir, name, "ttfp-warm.json")) as f:
                     device = json.load(f)["device"]
-        except (vkrun.VkpathError, embree.EmbreeError, references.ReferenceRefused, subprocess.SubprocessError,
-                OSError) as e:
+        except (vkrun.VkpathError, embree.EmbreeError, cycles.CyclesError, references.ReferenceRefused,
+                subprocess.SubprocessError, OSError) as e:
             log("bench: %s: %s" % (name, e))
             failures.append("%s: %s" % (name, e))
             scenes.append({"name": name, "size": "%dx%d" % size, "skipped": str(e).replace("|", "/")})
@@ -529,6 +585,10 @@ def main():
     ratios = ["%s %.2fx" % (s["name"], s["embree"]["ratio"]) for s in scenes if "ratio" in s.get("embree", {})]
     if ratios:
         log("bench: ratio to Embree (vkpath rays/s / Embree rays/s): " + ", ".join(ratios))
+    ratios = ["%s %s" % (s["name"], "%.2fx" % s["cycles"]["ratio"] if s["cycles"].get("ratio") is not None else
+                         s["cycles"].get("refused", "not reached")) for s in scenes if s.get("cycles")]
+    if ratios:
+        log("bench: time to Cycles' error (vkpath / Cycles): " + ", ".join(ratios))
     report.write_summary_json(os.path.join(args.out, "summary.json"), run)
     report.write_summary_md(os.path.join(args.out, "summary.md"), run)
     report.plot(os.path.join(args.out, "relmse_vs_time.png"), run, curves_by_scene)

@@ -124,6 +124,9 @@ def write_summary_md(path, run):
     embree_rows = [s for s in run["scenes"] if s.get("embree")]
     if embree_rows:
         write_embree_md(L, embree_rows, run["default_sampler"])
+    cycles_rows = [s for s in run["scenes"] if s.get("cycles")]
+    if cycles_rows:
+        write_cycles_md(L, cycles_rows, run["default_sampler"])
     if any(s.get("settings") for s in run["scenes"]):
         L.append("## Settings at equal time")
         L.append("")
@@ -255,6 +258,35 @@ def write_embree_md(L, scenes, sampler):
             s["name"], s["size"], e["threads"], fmt_rate(e["vkpath_rays_per_second"]), fmt_rate(e["embree_rays_per_second"]),
             e["ratio"], e["vkpath_rays_per_sample"], e["embree_rays_per_sample"], e["vkpath_spp"], e["embree_spp"],
             e["max_abs_z"]))
+    L.append("")
+
+
+def write_cycles_md(L, scenes, sampler):
+    """The "Time to Cycles' error" section: per scene with a Cycles twin, Cycles' MSE at its spp and
+    its own render time, vkpath's time from process start to the same MSE, and their ratio."""
+    L.append("## Time to Cycles' error")
+    L.append("")
+    L.append("Blender's Cycles renders the scene's twin (tools/blender/cornell_cycles.py: Blender's own glTF "
+             "export of the scene, Lambertian, box pixel filter, no clamping, denoising or adaptive sampling) at a "
+             "fixed spp, timed by its own render call; vkpath (%s, same thread count) renders the scene with "
+             "--reference set to the same Cycles reference; vkpath's time = seconds from process start when its "
+             "MSE reaches Cycles' (interpolated between error-log rows). Both MSEs include the reference's own "
+             "floor alike. Target (issue 18): ratio at most 0.4. Mean diff.: the largest relative difference of a "
+             "channel's image mean from the reference's." % sampler)
+    L.append("")
+    L.append("| scene | size | threads | Cycles spp | Cycles MSE | Cycles s | vkpath s | **ratio** | target | "
+             "reference spp (MSE floor) | mean diff. vkpath / Cycles | Blender |")
+    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for s in scenes:
+        c = s["cycles"]
+        if c.get("refused"):
+            L.append("| %s | %s | | | | | | not measured: %s | | | | |" % (s["name"], s["size"], c["refused"]))
+            continue
+        L.append("| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
+            s["name"], c["size"], c["threads"], c["cycles_spp"], c["cycles_mse"], c["cycles_seconds"],
+            "%.2f" % c["vkpath_seconds"] if c["vkpath_seconds"] is not None else "not reached",
+            "%.2fx" % c["ratio"] if c["ratio"] is not None else "—", fmt_met(c["target_met"]), c["reference_spp"],
+            c["floor_mse"], 100 * c["vkpath_mean_rel_diff"], 100 * c["cycles_mean_rel_diff"], c["blender"]))
     L.append("")
 
 

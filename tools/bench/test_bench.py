@@ -20,6 +20,7 @@ try:
     import bench  # noqa: E402  (exits 77 without python3-matplotlib)
 except SystemExit:
     bench = None
+import cycles  # noqa: E402
 import embree  # noqa: E402
 import metrics  # noqa: E402
 import pfm  # noqa: E402
@@ -141,6 +142,39 @@ class EmbreeReportTest(unittest.TestCase):
         self.assertIn("## Ratio to Embree", text)
         self.assertIn("| cornell-classic | 64x64 | 2 | 5 M | 10 M | **0.50x** | 4.570 / 4.560 | 400 / 900 | 0.7 |", text)
         self.assertIn("| env-sky | 96x54 | | | refused: an environment map: not supported |", text)
+
+
+class CyclesTest(unittest.TestCase):
+    def test_time_to_cycles_error_is_interpolated_in_log_log(self):
+        # vkpath's MSE halves with each doubling of time (error ~ 1/t): Cycles' MSE 0.002 is reached at
+        # 5 s from the rows at 4 s (0.0025) and 8 s (0.00125); Cycles took 10 s, so the ratio is 0.5.
+        pts = [(2.0, 0.005), (4.0, 0.0025), (8.0, 0.00125)]
+        r = cycles.result(0.002, 10.0, pts, 1e-5)
+        self.assertAlmostEqual(r["vkpath_seconds"], 5.0)
+        self.assertAlmostEqual(r["ratio"], 0.5)
+        self.assertFalse(r["target_met"])
+        self.assertAlmostEqual(r["cycles_rmse"], 0.002 ** 0.5)
+        self.assertEqual(r["vkpath_final_mse"], 0.00125)
+        self.assertTrue(cycles.result(0.002, 20.0, pts, 1e-5)["target_met"])  # 5 s / 20 s = 0.25
+        # Never as low: not reached, no ratio, target not met (a bias between the renderers shows so).
+        r = cycles.result(0.001, 10.0, pts, 1e-5)
+        self.assertIsNone(r["vkpath_seconds"])
+        self.assertIsNone(r["ratio"])
+        self.assertFalse(r["target_met"])
+
+    def test_report(self):
+        ok = {"name": "cornell-classic", "size": "256x256", "cycles": dict(
+            cycles.result(0.002, 10.0, [(2.0, 0.005), (4.0, 0.0025), (8.0, 0.00125)], 1.5e-5), blender="Blender 3.4.1",
+            threads=2, size="256x256", cycles_spp=256, reference_spp=8192, vkpath_spp=900,
+            vkpath_samples_per_second=1e6, vkpath_mean_rel_diff=0.002, cycles_mean_rel_diff=0.0004)}
+        missing = {"name": "cornell-classic", "size": "64x64", "cycles": {"refused": "blender is not installed"}}
+        lines = []
+        report.write_cycles_md(lines, [ok, missing], "mis")
+        text = "\n".join(lines)
+        self.assertIn("## Time to Cycles' error", text)
+        self.assertIn("| cornell-classic | 256x256 | 2 | 256 | 0.002 | 10.00 | 5.00 | **0.50x** | not met | 8192 (1.5e-05) "
+                      "| 0.20% / 0.04% | Blender 3.4.1 |", text)
+        self.assertIn("| cornell-classic | 64x64 | | | | | | not measured: blender is not installed |", text)
 
 
 RAW_LOG = """spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
