@@ -235,6 +235,27 @@ def write_denoise_md(L, scenes, thresholds, sampler):
         L.append("")
 
 
+def table_row(cells):
+    """A Markdown table row; an empty cell is written "| |"."""
+    return "|" + "|".join(" %s " % c if c != "" else " " for c in cells) + "|"
+
+
+def write_table(L, columns, scenes, key, refused_at, refused_word, row):
+    """A table with a header of `columns` and one row per scene: row(scene, scene[key]), or, where
+    scene[key] has "refused", the reason at column refused_at after refused_word."""
+    L.append(table_row(columns))
+    L.append("|" + "---|" * len(columns))
+    for s in scenes:
+        part = s[key]
+        if part.get("refused"):
+            cells = [s["name"], s["size"]] + [""] * (len(columns) - 2)
+            cells[refused_at] = "%s: %s" % (refused_word, part["refused"])
+            L.append(table_row(cells))
+        else:
+            L.append(row(s, part))
+    L.append("")
+
+
 def write_embree_md(L, scenes, sampler):
     """The "Ratio to Embree" section: per scene, vkpath's and the Embree reference's rays/s in the
     same run (same size, thread count and render time, one after the other) and their ratio."""
@@ -246,19 +267,13 @@ def write_embree_md(L, scenes, sampler):
              "rays/s over Embree's. Rays are counted alike (camera, bounce and shadow rays), so rays per sample "
              "should agree; |z|: the largest difference of the two images' region means, in standard errors." % sampler)
     L.append("")
-    L.append("| scene | size | threads | vkpath rays/s | Embree rays/s | **ratio to Embree** | rays/sample vkpath / Embree "
-             "| spp vkpath / Embree | max abs(z) |")
-    L.append("|---|---|---|---|---|---|---|---|---|")
-    for s in scenes:
-        e = s["embree"]
-        if e.get("refused"):
-            L.append("| %s | %s | | | refused: %s | | | | |" % (s["name"], s["size"], e["refused"]))
-            continue
-        L.append("| %s | %s | %d | %s | %s | **%.2fx** | %.3f / %.3f | %d / %d | %.1f |" % (
+    columns = ["scene", "size", "threads", "vkpath rays/s", "Embree rays/s", "**ratio to Embree**",
+               "rays/sample vkpath / Embree", "spp vkpath / Embree", "max abs(z)"]
+    write_table(L, columns, scenes, "embree", 4, "refused", lambda s, e: (
+        "| %s | %s | %d | %s | %s | **%.2fx** | %.3f / %.3f | %d / %d | %.1f |" % (
             s["name"], s["size"], e["threads"], fmt_rate(e["vkpath_rays_per_second"]), fmt_rate(e["embree_rays_per_second"]),
             e["ratio"], e["vkpath_rays_per_sample"], e["embree_rays_per_sample"], e["vkpath_spp"], e["embree_spp"],
-            e["max_abs_z"]))
-    L.append("")
+            e["max_abs_z"])))
 
 
 def write_cycles_md(L, scenes, sampler):
@@ -274,20 +289,14 @@ def write_cycles_md(L, scenes, sampler):
              "floor alike. Target (issue 18): ratio at most 0.4. Mean diff.: the largest relative difference of a "
              "channel's image mean from the reference's." % sampler)
     L.append("")
-    L.append("| scene | size | threads | Cycles spp | Cycles MSE | Cycles s | vkpath s | **ratio** | target | "
-             "reference spp (MSE floor) | mean diff. vkpath / Cycles | Blender |")
-    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for s in scenes:
-        c = s["cycles"]
-        if c.get("refused"):
-            L.append("| %s | %s | | | | | | not measured: %s | | | | |" % (s["name"], s["size"], c["refused"]))
-            continue
-        L.append("| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
+    columns = ["scene", "size", "threads", "Cycles spp", "Cycles MSE", "Cycles s", "vkpath s", "**ratio**", "target",
+               "reference spp (MSE floor)", "mean diff. vkpath / Cycles", "Blender"]
+    write_table(L, columns, scenes, "cycles", 7, "not measured", lambda s, c: (
+        "| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
             s["name"], c["size"], c["threads"], c["cycles_spp"], c["cycles_mse"], c["cycles_seconds"],
             "%.2f" % c["vkpath_seconds"] if c["vkpath_seconds"] is not None else "not reached",
             "%.2fx" % c["ratio"] if c["ratio"] is not None else "—", fmt_met(c["target_met"]), c["reference_spp"],
-            c["floor_mse"], 100 * c["vkpath_mean_rel_diff"], 100 * c["cycles_mean_rel_diff"], c["blender"]))
-    L.append("")
+            c["floor_mse"], 100 * c["vkpath_mean_rel_diff"], 100 * c["cycles_mean_rel_diff"], c["blender"])))
 
 
 def write_summary_json(path, run):
