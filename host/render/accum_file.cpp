@@ -254,18 +254,13 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
         st.decision.assign(n * kStateFloatsPerPixel, 0.0f);
         st.active.assign(n, 0);
     }
+    // Feature sums written before the indirect moments (6fb8864) or the frame (16ef338) were kept:
+    // named as such, not as a file that is no accumulation at all.
+    auto older = [&](const std::string& what) {
+        fail("its feature sums (--aov) are from an older vkpath: no " + what + "; render it again with this one");
+    };
     if (aov) {
-        // Feature sums written before the indirect moments (6fb8864) or the frame (16ef338) were
-        // kept: named as such, not as a file that is no accumulation at all.
-        auto older = [&](const std::string& what) {
-            fail("its feature sums (--aov) are from an older vkpath: no " + what + "; render it again with this one");
-        };
         if (attrs.find("vkpath.aovFrame") == attrs.end()) older("attribute vkpath.aovFrame");
-        for (const ChannelMap& m : channelMaps(adaptive, aov)) {
-            bool found = false;
-            for (int c = 0; c < header.h.num_channels; ++c) found = found || m.name == header.h.channels[c].name;
-            if (!found && m.array == &RenderState::aov) older("channel " + m.name);
-        }
         st.aov.assign(n * kAovFloatsPerPixel, 0.0f);
         const std::optional<AovFrame> frame = parseAovFrame(attr("vkpath.aovFrame"));
         if (!frame) fail("attribute vkpath.aovFrame is not 9 numbers: '" + attr("vkpath.aovFrame") + "'");
@@ -275,6 +270,7 @@ AccumFile readAccumFile(const std::filesystem::path& path) {
         int index = -1;
         for (int c = 0; c < header.h.num_channels; ++c)
             if (m.name == header.h.channels[c].name) index = c;
+        if (index < 0 && m.array == &RenderState::aov) older("channel " + m.name);
         if (index < 0 || !exr.i.images[index]) fail("no channel " + m.name);
         const float* plane = reinterpret_cast<const float*>(exr.i.images[index]);
         for (std::size_t i = 0; i < n; ++i) {

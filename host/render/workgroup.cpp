@@ -7,8 +7,9 @@
 
 namespace vkp {
 
-glm::uvec2 autoWorkgroup(std::uint32_t subgroupSize, const DeviceLimits& limits) {
+glm::uvec2 autoWorkgroup(const DeviceLimits& limits) {
     // Vulkan's subgroupSize is a power of two; anything else is taken as unknown.
+    const std::uint32_t subgroupSize = limits.subgroupSize;
     const bool known = subgroupSize != 0 && (subgroupSize & (subgroupSize - 1)) == 0;
     const std::uint32_t invocations = std::max<std::uint32_t>(64, known ? std::min<std::uint32_t>(subgroupSize, 1024) : 0);
     glm::uvec2 wg(8, invocations / 8);
@@ -23,7 +24,7 @@ glm::uvec2 autoWorkgroup(std::uint32_t subgroupSize, const DeviceLimits& limits)
 
 glm::uvec2 kernelWorkgroup(const Features& features, const DeviceLimits& limits) {
     if (features.workgroupX != 0 && features.workgroupY != 0) return glm::uvec2(features.workgroupX, features.workgroupY);
-    return autoWorkgroup(limits.subgroupSize, limits);
+    return autoWorkgroup(limits);
 }
 
 }  // namespace vkp

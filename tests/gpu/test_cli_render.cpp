@@ -171,7 +171,7 @@ TEST_F(CliRender, TimeLimitStopsBeforeSpp) {
     EXPECT_LT(spp, 1000000u) << "the render reached --spp: --time did not stop it";
     EXPECT_EQ(j["time_limit"].get<double>(), 3.0);
     // The workgroup the kernel ran with: no --workgroup, so the device's (render/workgroup.h).
-    const glm::uvec2 wg = autoWorkgroup(dev.info().subgroupSize, deviceLimits(dev.info()));
+    const glm::uvec2 wg = autoWorkgroup(deviceLimits(dev.info()));
     EXPECT_EQ(j["workgroup"].get<std::string>(), std::to_string(wg.x) + "x" + std::to_string(wg.y));
     EXPECT_GE(total, 2.0) << "stopped well before the time limit";
     EXPECT_LE(total, 15.0) << "ran far beyond the time limit";
@@ -195,7 +195,7 @@ TEST_F(CliRender, InfoChecksTheRenderAgainstTheDevice) {
     ProcessResult r = run({"info", scene("cornell-book3.json"), "--validate"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("device       " + dev.info().name + ": fits (1 band of rows"), std::string::npos) << r.out;
-    const glm::uvec2 wg = autoWorkgroup(dev.info().subgroupSize, deviceLimits(dev.info()));
+    const glm::uvec2 wg = autoWorkgroup(deviceLimits(dev.info()));
     EXPECT_NE(r.out.find("workgroup " + std::to_string(wg.x) + "x" + std::to_string(wg.y) + " (auto), subgroups of " +
                          std::to_string(dev.info().subgroupSize) + " lanes"),
               std::string::npos)

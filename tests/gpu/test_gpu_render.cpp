@@ -159,7 +159,7 @@ TEST(GpuRender, BitIdenticalAcrossWorkgroupSizesAndTileOrders) {
             if (wx == 0) {  // auto: the device's (render/workgroup.h), which the kernel then runs with
                 const std::uint32_t lanes = dev.info().subgroupSize;
                 EXPECT_TRUE(lanes != 0 && (lanes & (lanes - 1)) == 0) << "Vulkan 1.1 reports a power of two: " << lanes;
-                const glm::uvec2 expected = autoWorkgroup(lanes, deviceLimits(dev.info()));
+                const glm::uvec2 expected = autoWorkgroup(deviceLimits(dev.info()));
                 EXPECT_EQ(r.renderer->features().workgroupX, expected.x);
                 EXPECT_EQ(r.renderer->features().workgroupY, expected.y);
                 EXPECT_EQ(r.renderer->features().specConstants().at(VKP_SPEC_WORKGROUP_X), expected.x);

@@ -31,14 +31,14 @@ def image_size(scene, size):
     scene.render.resolution_percentage = 100
 
 
-def render_cycles(scene, spp, out_exr, max_bounces=None):
-    """Cycles' reference render of scene to the linear EXR out_exr."""
+def cycles_settings(scene, spp, out_exr, max_bounces=None, seed=1):
+    """Cycles' settings for a reference render of scene to the linear EXR out_exr (not rendered)."""
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = spp
     scene.cycles.use_denoising = False
     scene.cycles.use_adaptive_sampling = False
-    scene.cycles.seed = 1
+    scene.cycles.seed = seed
     if max_bounces is not None:
         scene.cycles.max_bounces = max_bounces
     scene.render.film_transparent = False
@@ -46,6 +46,11 @@ def render_cycles(scene, spp, out_exr, max_bounces=None):
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"
     scene.render.filepath = out_exr
+
+
+def render_cycles(scene, spp, out_exr, max_bounces=None):
+    """Cycles' reference render of scene to the linear EXR out_exr."""
+    cycles_settings(scene, spp, out_exr, max_bounces)
     bpy.ops.render.render(write_still=True)
 
 
@@ -66,10 +71,11 @@ def diffuse_floor(size, albedo):
 
 
 def render_as_diffuse(mat, albedo):
-    """After the export: Cycles renders mat as a pure Diffuse BSDF of that albedo (the Lambertian
-    BRDF vkpath renders with specular 0)."""
+    """After the export: Cycles renders mat as a pure Diffuse BSDF of that albedo (a grey level or
+    linear RGB; the Lambertian BRDF vkpath renders with specular 0)."""
     nodes = mat.node_tree.nodes
     diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (albedo, albedo, albedo, 1.0)
+    rgb = tuple(albedo[:3]) if hasattr(albedo, "__len__") else (albedo, albedo, albedo)
+    diffuse.inputs["Color"].default_value = rgb + (1.0,)
     diffuse.inputs["Roughness"].default_value = 0.0
     mat.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])

@@ -23,6 +23,9 @@ import time
 import bpy
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import cycles_settings, image_size, render_as_diffuse, world_color  # noqa: E402
+
 args = sys.argv[sys.argv.index("--") + 1:]
 gltf, out_pfm, size, spp, seed, threads = args[0], args[1], int(args[2]), int(args[3]), int(args[4]), int(args[5])
 
@@ -37,10 +40,7 @@ if len(cameras) != 1:
     raise SystemExit("cornell_cycles: %s has %d cameras, expected 1" % (gltf, len(cameras)))
 scene.camera = cameras[0]
 
-world = bpy.data.worlds.new("black")
-world.use_nodes = False
-world.color = (0.0, 0.0, 0.0)
-scene.world = world
+world_color(scene, (0.0, 0.0, 0.0))
 
 for mat in bpy.data.materials:
     if not mat.use_nodes:
@@ -66,35 +66,20 @@ for mat in bpy.data.materials:
         links.new(mix.outputs["Shader"], output.inputs["Surface"])
         print("cornell_cycles: %s: one-sided emission of strength %g" % (mat.name, strength))
     else:
-        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-        diffuse.inputs["Color"].default_value = principled.inputs["Base Color"].default_value
-        diffuse.inputs["Roughness"].default_value = 0.0
-        links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
-        print("cornell_cycles: %s: Diffuse BSDF %s" % (mat.name, tuple(round(c, 4) for c in diffuse.inputs["Color"].default_value[:3])))
+        base = principled.inputs["Base Color"].default_value
+        render_as_diffuse(mat, base)
+        print("cornell_cycles: %s: Diffuse BSDF %s" % (mat.name, tuple(round(c, 4) for c in base[:3])))
 
-scene.render.resolution_x = size
-scene.render.resolution_y = size
-scene.render.resolution_percentage = 100
-scene.render.engine = "CYCLES"
-scene.cycles.device = "CPU"
-scene.cycles.samples = spp
-scene.cycles.seed = seed
-scene.cycles.use_denoising = False
-scene.cycles.use_adaptive_sampling = False
+image_size(scene, size)
+exr = out_pfm + ".exr"
+cycles_settings(scene, spp, exr, max_bounces=50, seed=seed)
+scene.cycles.diffuse_bounces = 50
 scene.cycles.sample_clamp_direct = 0.0
 scene.cycles.sample_clamp_indirect = 0.0
-scene.cycles.max_bounces = 50
-scene.cycles.diffuse_bounces = 50
 scene.cycles.pixel_filter_type = "BOX"
 scene.cycles.filter_width = 1.0
 scene.render.threads_mode = "FIXED"
 scene.render.threads = threads
-scene.render.film_transparent = False
-scene.view_settings.view_transform = "Standard"
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
-exr = out_pfm + ".exr"
-scene.render.filepath = exr
 
 t0 = time.perf_counter()
 bpy.ops.render.render(write_still=False)
