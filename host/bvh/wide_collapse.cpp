@@ -25,9 +25,10 @@ std::array<WideChild, 2> binaryChildren(const GpuNode& n) {
     return c;
 }
 
+template <std::size_t N>
 struct Collapser {
     const FlatBvh& bvh;
-    WideTree out;
+    WideTreeOf<N> out;
 
     const GpuNode& node(std::uint32_t i) const {
         if (i >= bvh.nodes.size())
@@ -40,7 +41,7 @@ struct Collapser {
         std::vector<WideChild> slots;
         for (const WideChild& c : binaryChildren(node(b)))
             if (!c.empty()) slots.push_back(c);
-        while (slots.size() < 4) {
+        while (slots.size() < N) {
             int best = -1;
             float bestArea = -1.0f;
             for (std::size_t k = 0; k < slots.size(); ++k)
@@ -71,8 +72,9 @@ struct Collapser {
 
 }  // namespace
 
-WideTree collapseToWide(const FlatBvh& bvh) {
-    Collapser c{bvh, {}};
+template <std::size_t N>
+WideTreeOf<N> collapseToWideOf(const FlatBvh& bvh) {
+    Collapser<N> c{bvh, {}};
     if (bvh.nodes.empty()) {
         c.out.nodes.emplace_back();
         return c.out;
@@ -80,5 +82,8 @@ WideTree collapseToWide(const FlatBvh& bvh) {
     c.emit(0, 0);
     return c.out;
 }
+
+template WideTreeOf<4> collapseToWideOf<4>(const FlatBvh& bvh);
+template WideTreeOf<8> collapseToWideOf<8>(const FlatBvh& bvh);
 
 }  // namespace vkp

@@ -13,7 +13,9 @@
 //   are read-only storage buffers of uvec4 holding the same data. With -DVKP_FETCH_BDA the same
 //   data is read through buffer device addresses (GL_EXT_buffer_reference) given as push
 //   constants: uvec2 node address, uvec2 primitive address. With -DVKP_BVH_WIDE binding 1
-//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse.glsl.
+//   holds 4-wide nodes (shared/wide_bvh.h, 8 texels each) traversed by lib/traverse.glsl; with
+//   -DVKP_BVH_WIDE -DVKP_BVH_WIDE8 8-wide nodes (two 4-wide halves, 16 texels each) traversed by
+//   tests/traverse_wide8.glsl (the benchmark's).
 //   binding 3 (SSBO, written): per ray a uvec4:
 //       x: bits of the closest hit t (VKP_FAR on a miss), y: primitive index (0xffffffff on a
 //       miss), z: passes of traceClosest (starting from 0), w: traceAny's result (bit 0) |
@@ -113,7 +115,9 @@ GpuInstance fetchInstance(uint i) {
 }
 #endif
 
-#ifdef VKP_BVH_WIDE
+#if defined(VKP_BVH_WIDE8)
+#include "tests/traverse_wide8.glsl"  // the benchmark's 8-wide nodes (two 4-wide halves each)
+#elif defined(VKP_BVH_WIDE)
 #include "lib/traverse.glsl"  // the kernels' traversal (4-wide)
 #else
 #include "tests/traverse_binary.glsl"  // the benchmark's binary layout

@@ -1,4 +1,4 @@
-// The 4-wide BVH: collapse (host/bvh/wide_collapse.h), packing (wide_pack.h) and its CPU traversal
+// The 4-wide BVH (and the benchmark's 8-wide collapse): collapse (host/bvh/wide_collapse.h), packing (wide_pack.h) and its CPU traversal
 // (traverse_wide_cpu.h). Collapse: every primitive reachable exactly once, each inner child's box
 // contains its node's child boxes, leaf boxes contain their primitives, nodes are fewer. Traversal:
 // the same closest t (bit-exact), the same reported primitive's t and the same any-hit answer as
@@ -20,19 +20,22 @@ using namespace vkp;
 using test::Ray;
 
 /// Walks the packed nodes from the root, checking structure; returns how often each prim is reached.
-std::vector<int> reachCounts(const Scene& scene, const FlatBvh& bvh, const std::vector<gpu::GpuWideNode>& nodes) {
+/// halves: GpuWideNodes per tree node (1: 4-wide; 2: 8-wide, packWide8).
+std::vector<int> reachCounts(const Scene& scene, const FlatBvh& bvh, const std::vector<gpu::GpuWideNode>& nodes,
+                             std::uint32_t halves = 1) {
     std::vector<int> seen(bvh.prims.size(), 0);
-    std::vector<int> nodeSeen(nodes.size(), 0);
+    std::vector<int> nodeSeen(nodes.size() / halves, 0);
     std::vector<std::pair<std::uint32_t, Aabb>> todo{{0u, Aabb{}}};
     bool root = true;
     while (!todo.empty()) {
         const auto [i, parentBox] = todo.back();
         todo.pop_back();
-        EXPECT_LT(i, nodes.size());
-        if (i >= nodes.size()) break;
+        EXPECT_LT(i, nodeSeen.size());
+        if (i >= nodeSeen.size()) break;
         ++nodeSeen[i];
-        const gpu::GpuWideNode& n = nodes[i];
-        for (int k = 0; k < 4; ++k) {
+        for (std::uint32_t slot = 0; slot < 4 * halves; ++slot) {
+            const gpu::GpuWideNode& n = nodes[halves * i + slot / 4];
+            const int k = int(slot % 4);
             Aabb box;
             box.lo = glm::vec3(n.loX[k], n.loY[k], n.loZ[k]);
             box.hi = glm::vec3(n.hiX[k], n.hiY[k], n.hiZ[k]);
@@ -54,7 +57,7 @@ std::vector<int> reachCounts(const Scene& scene, const FlatBvh& bvh, const std::
         }
         root = false;
     }
-    for (std::size_t i = 0; i < nodes.size(); ++i) EXPECT_EQ(nodeSeen[i], 1) << "node " << i;
+    for (std::size_t i = 0; i < nodeSeen.size(); ++i) EXPECT_EQ(nodeSeen[i], 1) << "node " << i;
     return seen;
 }
 
@@ -68,6 +71,16 @@ void checkCollapse(const std::vector<vkp::Shape>& shapes) {
     for (std::size_t p = 0; p < seen.size(); ++p) ASSERT_EQ(seen[p], 1) << "prim " << p << " reached " << seen[p] << " times";
     if (bvh.nodes.size() > 3) EXPECT_LT(nodes.size(), bvh.nodes.size());
     EXPECT_LE(tree.maxDepth, bvh.stats.maxDepth);
+
+    // The layout benchmark's 8-wide tree (two GpuWideNodes per node): the same guarantees, and no
+    // more nodes than the 4-wide tree.
+    const WideTreeOf<8> tree8 = collapseToWideOf<8>(bvh);
+    const std::vector<gpu::GpuWideNode> nodes8 = packWide8(tree8);
+    ASSERT_EQ(nodes8.size(), 2 * tree8.nodes.size());
+    const std::vector<int> seen8 = reachCounts(scene, bvh, nodes8, 2);
+    for (std::size_t p = 0; p < seen8.size(); ++p) ASSERT_EQ(seen8[p], 1) << "8-wide: prim " << p;
+    EXPECT_LE(tree8.nodes.size(), tree.nodes.size());
+    EXPECT_LE(tree8.maxDepth, tree.maxDepth);
 }
 
 TEST(BvhWide, CollapseReachesEveryPrimitiveOnceInsideItsBoxes) {
