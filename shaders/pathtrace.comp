@@ -61,7 +61,7 @@ struct PathState {
     vec3 aovNormal;      // shading normal there, 0 until then
     bool aovDone;        // the albedo and normal are set
     vec4 aovPos;         // xyz: the camera ray's hit point (camera-relative), w: 1 if it hit, else all 0
-    vec3 aovEmit;        // the radiance gathered when the first non-specular vertex was reached
+    vec3 aovEmit;        // the radiance gathered when the first non-specular or glass vertex was reached
     bool aovEmitSet;     // ... which it was (else the path's whole radiance is emission seen directly)
 };
 
@@ -106,14 +106,17 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
 }
 
 /// HAS_AOV: the path reaches a vertex with BSDF b. Unless the AOVs see through it (a mirror or
-/// glass: the next vertex decides), its albedo and normal are the sample's (shared/aov.h).
+/// glass: the next vertex decides), its albedo and normal are the sample's; the emission feature
+/// stops growing here or at glass (shared/aov.h).
 void aovVertex(inout PathState s, Bsdf b) {
+    if (!s.aovEmitSet && aovEmissionStops(b)) {
+        s.aovEmit = s.radiance;  // what the camera saw directly, or through mirrors
+        s.aovEmitSet = true;
+    }
     if (aovSeesThrough(b)) return;
     s.aovAlbedo = s.aovTint * aovAlbedo(b);
     s.aovNormal = aovNormal(b);
     s.aovDone = true;
-    s.aovEmit = s.radiance;  // what the camera saw directly, or through mirrors and glass
-    s.aovEmitSet = true;
 }
 
 /// HAS_AOV: the path ends, before any non-specular vertex, at radiance L (the background, a light)

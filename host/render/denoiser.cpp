@@ -175,12 +175,13 @@ Image Denoiser::run(const DenoiseInput& input) {
         upload(kColor, *input.color);
         upload(kVariance, *input.variance);
         upload(kAlbedo, *input.albedo);
-        // The guide: the unit normal (0 where the mean normal is 0 or not finite) and the depth,
-        // -1 where no sample hit.
+        // The guide: the unit normal (0 where the mean normal is shorter than minNormalLength or
+        // not finite) and the depth, -1 where no sample hit.
+        const float minLength = std::max(options_.minNormalLength, 1e-6f);
         for (std::size_t i = 0; i < count; ++i) {
             const float* n = input.normal->rgb.data() + 3 * (first + i);
             const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            const float s = std::isfinite(len) && len > 1e-6f ? 1.0f / len : 0.0f;
+            const float s = std::isfinite(len) && len >= minLength ? 1.0f / len : 0.0f;
             for (int c = 0; c < 3; ++c) packed[4 * i + c] = n[c] * s;
             const float z = (*input.depth)[first + i];
             packed[4 * i + 3] = std::isfinite(z) && z >= 0.0f ? z : -1.0f;

@@ -39,6 +39,12 @@ struct DenoiseOptions {
     float sigmaLuminance = 4.0f;
     /// Normal edge-stopping: the weight is max(0, cos(angle between the normals))^sigmaNormal.
     float sigmaNormal = 128.0f;
+    /// A mean normal shorter than this has no direction to trust: its pixel's samples found
+    /// surfaces facing many ways or mostly none (the inside of a glass sphere full of fog, seen
+    /// through its refraction), so the unit vector made from it is noise, and at sigmaNormal 128
+    /// any two such pixels would never mix. Such a pixel is filtered as one without a normal
+    /// (alike with others of its kind, never mixed with pixels that have one).
+    float minNormalLength = 0.5f;
     /// Depth edge-stopping: a tap whose depth differs from the centre's by sigmaDepth times the
     /// change the centre's depth gradient predicts weighs 1/e (plus 0.1% of the depth, so a flat
     /// face facing the camera never stops the filter).

@@ -15,11 +15,15 @@
 //            Averaged over all samples (so its length is below 1 where samples disagree).
 //   position the first surface the camera ray hits (media ignored), in world units; averaged over
 //            the samples that hit something ("hits"; the pixel has no position when none did).
-//   emission the radiance a sample gathered before its first non-specular vertex (its whole
-//            radiance when it has none): lights and the background seen directly or through
-//            mirrors and glass. It has no noise but the pixel filter's, so the denoiser leaves it
-//            out of what it filters and adds it back. Averaged over all samples (a sample the
-//            image drops as not finite adds 0).
+//   emission the radiance a sample gathered before its first non-specular vertex or its first
+//            glass vertex, whichever comes first (its whole radiance when it has neither): lights
+//            and the background seen directly or through mirrors. It has no noise but the pixel
+//            filter's, so the denoiser leaves it out of what it filters and adds it back. What is
+//            seen through glass is not in it (aovEmissionStops): glass reflects or refracts by
+//            chance, so a light seen through it is noise like any other (16 samples of a glass
+//            sphere in front of a light: one reflects onto it and the pixel is a firefly), and
+//            the denoiser filters it. Averaged over all samples (a sample the image drops as not
+//            finite adds 0).
 //   indirect the Rec. 709 luminance of the rest of the sample's radiance (radiance - emission),
 //            its mean and the mean of its square over all samples (a dropped sample adds 0):
 //            the variance the denoiser's edge-stopping needs is that of what it filters, which
@@ -50,6 +54,12 @@ VKP_FN bool aovSeesThrough(Bsdf b) {
     if (b.type == MAT_DIELECTRIC) return true;
     return b.type == MAT_METAL && b.param <= AOV_MIRROR_FUZZ;
 }
+
+/// The emission feature (above) stops at a vertex with BSDF b: at every vertex the AOVs do not see
+/// through, and at glass, whose sample is random (reflect or refract by Fresnel's odds), so what
+/// the path gathers after it is noise for the denoiser to filter. A mirror's reflection is
+/// deterministic: the lights seen in it stay emission, unfiltered and sharp.
+VKP_FN bool aovEmissionStops(Bsdf b) { return !aovSeesThrough(b) || b.type == MAT_DIELECTRIC; }
 
 /// The albedo AOV of a vertex with BSDF b that the AOVs do not see through (aovSeesThrough
 /// false): a glTF material's base colour (texture and vertex colour applied), the albedo of the

@@ -313,6 +313,47 @@ TEST(GpuAov, TheIndirectMomentsLeaveTheEmissionOut) {
     EXPECT_GT(edge, 5);
 }
 
+TEST(GpuAov, ALightSeenThroughGlassIsFilteredNotEmission) {
+    VKP_REQUIRE_DEVICE(dev);
+    const auto dir = scratchDir("gpu_aov_glass");
+    // A light fills the view; a glass pane (two parallel quads) covers its left half. Glass
+    // reflects or refracts by chance (about 4 % reflect here, onto the black background), so what
+    // is seen through it is noise to filter: its emission feature is 0 and the light is in the
+    // indirect moments. The right half sees the light directly: emission 4, no indirect part.
+    const Scene scene = loadSceneText(dir, R"({
+      "camera": {"lookfrom": [0, 0, 3], "lookat": [0, 0, 0], "vfov": 40, "width": 24, "height": 16},
+      "render": {"background": [0, 0, 0], "max_depth": 8},
+      "materials": {"glass": {"type": "dielectric", "ior": 1.5},
+                    "light": {"type": "diffuse_light", "emit": [4, 4, 4]}},
+      "objects": [{"type": "quad", "Q": [-10, -10, -2], "u": [20, 0, 0], "v": [0, 20, 0], "material": "light"},
+                  {"type": "quad", "Q": [-10, -10, 0], "u": [10, 0, 0], "v": [0, 20, 0], "material": "glass"},
+                  {"type": "quad", "Q": [-10, -10, -0.1], "u": [10, 0, 0], "v": [0, 20, 0], "material": "glass"}]})");
+    const std::uint32_t spp = 64;
+    TestRender r = renderWithAovs(dev, scene, spp);
+    const std::vector<float> sums = r.renderer->readAovSums();
+    const FeatureImages f = featuresOf(r);
+    const Image mean = r.renderer->readSums().mean();
+    int throughGlass = 0, direct = 0;
+    for (std::uint32_t y = 0; y < 16; ++y)
+        for (std::uint32_t x = 0; x < 24; ++x) {
+            if (x == 11 || x == 12) continue;  // the pane's edge
+            const std::size_t i = std::size_t(y) * 24 + x;
+            const float* a = sums.data() + i * kAovFloatsPerPixel;
+            if (x < 11) {
+                ++throughGlass;
+                EXPECT_EQ(f.emission.rgb[3 * i], 0.0f) << x << "," << y;
+                EXPECT_GT(mean.rgb[3 * i], 2.0f) << x << "," << y;  // the light, through the pane
+                EXPECT_NEAR(a[11], mean.rgb[3 * i], 1e-5f * mean.rgb[3 * i]) << x << "," << y;  // all of it indirect
+            } else {
+                ++direct;
+                EXPECT_EQ(f.emission.rgb[3 * i], 4.0f) << x << "," << y;
+                EXPECT_EQ(a[11], 0.0f) << x << "," << y;
+            }
+        }
+    EXPECT_EQ(throughGlass, 11 * 16);
+    EXPECT_EQ(direct, 11 * 16);
+}
+
 // ---- 4. The image does not change ----------------------------------------------------------------
 
 TEST(GpuAov, TheImageIsBitIdenticalWithAndWithoutFeatureImages) {

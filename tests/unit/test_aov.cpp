@@ -146,6 +146,14 @@ gpu::Bsdf bsdfOf(std::uint32_t type, glm::vec3 albedo, float param) {
     return gpu::makeBsdf(m, n, n, n, glm::vec3(0.0f, 0.0f, -1.0f), true);
 }
 
+TEST(AovRules, TheEmissionStopsAtGlassAndAtTheVertexButNotAtMirrors) {
+    EXPECT_TRUE(gpu::aovEmissionStops(bsdfOf(gpu::MAT_DIELECTRIC, glm::vec3(1.0f), 1.5f)));  // reflects or refracts by chance
+    EXPECT_FALSE(gpu::aovEmissionStops(bsdfOf(gpu::MAT_METAL, glm::vec3(0.9f), 0.0f)));     // a mirror: deterministic
+    EXPECT_TRUE(gpu::aovEmissionStops(bsdfOf(gpu::MAT_METAL, glm::vec3(0.9f), 0.01f)));
+    EXPECT_TRUE(gpu::aovEmissionStops(bsdfOf(gpu::MAT_LAMBERTIAN, glm::vec3(0.3f), 0.0f)));
+    EXPECT_TRUE(gpu::aovEmissionStops(bsdfOf(gpu::MAT_PBR, glm::vec3(0.3f), 0.0f)));
+}
+
 TEST(AovRules, MirrorsAndGlassAreSeenThroughEverythingElseIsTheVertex) {
     EXPECT_TRUE(gpu::aovSeesThrough(bsdfOf(gpu::MAT_DIELECTRIC, glm::vec3(1.0f), 1.5f)));
     EXPECT_TRUE(gpu::aovSeesThrough(bsdfOf(gpu::MAT_METAL, glm::vec3(0.9f), 0.0f)));
