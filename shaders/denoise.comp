@@ -29,7 +29,8 @@
 //  0 color     (rgb, -)                     uniform texel buffer RGBA32F
 //  1 variance  (rgb: variance of the mean)  uniform texel buffer RGBA32F
 //  2 albedo    (rgb, -)                     uniform texel buffer RGBA32F
-//  3 guide     (unit normal or 0, depth)    uniform texel buffer RGBA32F; depth < 0: nothing hit
+//  3 guide     (normal or 0, depth)         uniform texel buffer RGBA32F; depth < 0: nothing hit; the
+//                                           normal's length is 1 / (1 + its direction's variance)
 //  4 illumIn   (demodulated rgb, var_L)     uniform texel buffer RGBA32F (PASS 1)
 //  5 illumOut  same layout                  storage buffer
 // Taps outside the band are skipped and the weights renormalised, so a band's rows farther than
@@ -56,6 +57,7 @@ layout(push_constant) uniform Push {
     float sigmaZ;     // depth: multiples of the depth change the gradient predicts that give 1/e
     float albedoEps;  // the albedo's floor for demodulation
     float ridge;      // PASS 1: >= 0: local linear fit with this ridge on the slopes; < 0: weighted mean
+    float normalNoise;  // PASS 1: > 0: the cosine's exponent is min(sigmaN, normalNoise / (theta_p^2 + theta_q^2))
 } push;
 
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);  // Rec. 709 luminance
@@ -110,6 +112,7 @@ void atrousLevel(int x, int y, int i) {
     vec4 g = texelFetch(uGuide, i);
     bool hit = g.w >= 0.0;
     bool hasNormal = dot(g.xyz, g.xyz) > 0.0;
+    float lenP = length(g.xyz);  // 1 / (1 + theta_p^2): the direction's variance (host)
     vec2 grad = hit ? depthGradient(x, y, g.w) : vec2(0.0);
     float lumP = dot(kLuma, centre.rgb);
     float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
@@ -135,7 +138,16 @@ void atrousLevel(int x, int y, int i) {
                 logW -= abs(g.w - gq.w) / (push.sigmaZ * expected + zEps);
                 bool qHasNormal = dot(gq.xyz, gq.xyz) > 0.0;
                 // Two hits without a normal (a mean normal of 0) are alike; one without is not.
-                if (hasNormal || qHasNormal) logW += push.sigmaN * log(max(dot(g.xyz, gq.xyz), 1e-30));
+                // Two normals: the cosine of their directions, its exponent lowered where the two
+                // mean normals are noisy (DenoiseOptions::normalNoise).
+                if (hasNormal && qHasNormal) {
+                    float lenQ = length(gq.xyz);
+                    float theta2 = (1.0 / lenP - 1.0) + (1.0 / lenQ - 1.0);
+                    float sN = push.normalNoise > 0.0 ? min(push.sigmaN, push.normalNoise / max(theta2, 1e-30)) : push.sigmaN;
+                    logW += sN * log(max(dot(g.xyz, gq.xyz) / (lenP * lenQ), 1e-30));
+                } else if (hasNormal || qHasNormal) {
+                    logW += push.sigmaN * log(1e-30);
+                }
             }
             float wq = kB3[tx + 2] * kB3[ty + 2] * exp(logW);
             float u1 = float(tx), u2 = float(ty), wv = wq * wq * q.w;

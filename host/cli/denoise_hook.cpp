@@ -14,7 +14,7 @@ std::function<Image(const DenoiseRequest&)> denoiseHook(Denoiser& denoiser) {
             indirect.rgb[i] -= f.emission.rgb[i];
             variance.rgb[i] = f.indirectVariance[i / 3];
         }
-        const DenoiseInput in{&indirect, &variance, &f.albedo, &f.normal, &f.depth};
+        const DenoiseInput in{&indirect, &variance, &f.albedo, &f.normal, &f.depth, &f.samples};
         Image out = denoiser.run(in);
         for (std::size_t i = 0; i < out.rgb.size(); ++i) out.rgb[i] += f.emission.rgb[i];
         return out;

@@ -59,6 +59,7 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
     f.emission = Image(width, height);
     f.depth.assign(n, std::numeric_limits<float>::infinity());
     f.hitFraction.assign(n, 0.0f);
+    f.samples.assign(n, 0.0f);
     f.indirectVariance.assign(n, 0.0f);
     const glm::dvec3 axis(frame.viewAxis), eye(frame.eye);
     for (std::size_t i = 0; i < n; ++i) {
@@ -71,6 +72,7 @@ FeatureImages featureImages(std::span<const float> sums, std::uint32_t width, st
                 f.emission.rgb[3 * i + c] = s[12 + c];
             }
             f.hitFraction[i] = float(hits / samples);
+            f.samples[i] = float(samples);
             if (samples >= 2.0) {
                 const double mean = s[11], sampleVariance = std::max(0.0, double(s[15]) - mean * mean) * samples / (samples - 1.0);
                 f.indirectVariance[i] = float(sampleVariance / samples);

@@ -42,6 +42,7 @@ struct FeatureImages {
     Image position;  ///< mean first-hit position over the samples that hit (world units); 0 where none hit
     std::vector<float> depth;  ///< that position's distance along the view axis (world units); +inf where none hit
     std::vector<float> hitFraction;  ///< fraction of the pixel's samples whose camera ray hit something
+    std::vector<float> samples;      ///< the samples in the pixel's feature means (0: none)
     Image emission;  ///< mean radiance seen before the first non-specular vertex (shared/aov.h)
     /// Variance of the MEAN of the luminance of radiance - emission (shared/aov.h "indirect"):
     /// the sample variance (n/(n-1) corrected) over all n samples, divided by n; 0 where n < 2.

@@ -22,9 +22,9 @@ namespace {
 /// Must match `push` in shaders/denoise.comp.
 struct DenoisePush {
     std::uint32_t width, rows, step, remodulate;
-    float sigmaL, sigmaN, sigmaZ, albedoEps, ridge;
+    float sigmaL, sigmaN, sigmaZ, albedoEps, ridge, normalNoise;
 };
-static_assert(sizeof(DenoisePush) == 36);
+static_assert(sizeof(DenoisePush) == 40);
 
 /// Bytes per pixel of every buffer: one vec4.
 constexpr std::uint64_t kBytesPerPixel = 16;
@@ -175,13 +175,20 @@ Image Denoiser::run(const DenoiseInput& input) {
         upload(kColor, *input.color);
         upload(kVariance, *input.variance);
         upload(kAlbedo, *input.albedo);
-        // The guide: the unit normal (0 where the mean normal is shorter than minNormalLength or
-        // not finite) and the depth, -1 where no sample hit.
+        // The guide: the normal (0 where the mean normal is shorter than minNormalLength or not
+        // finite) and the depth, -1 where no sample hit. The normal's direction is the mean's; its
+        // length 1 / (1 + theta^2) carries the variance theta^2 of that direction (normalNoise;
+        // 1 without DenoiseInput::samples).
         const float minLength = std::max(options_.minNormalLength, 1e-6f);
         for (std::size_t i = 0; i < count; ++i) {
             const float* n = input.normal->rgb.data() + 3 * (first + i);
             const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            const float s = std::isfinite(len) && len >= minLength ? 1.0f / len : 0.0f;
+            float s = std::isfinite(len) && len >= minLength ? 1.0f / len : 0.0f;
+            if (s > 0.0f && input.samples && (*input.samples)[first + i] >= 1.0f) {
+                const float l2 = std::min(len * len, 1.0f);
+                const float theta2 = (1.0f - l2) / ((*input.samples)[first + i] * l2);
+                s /= 1.0f + theta2;
+            }
             for (int c = 0; c < 3; ++c) packed[4 * i + c] = n[c] * s;
             const float z = (*input.depth)[first + i];
             packed[4 * i + 3] = std::isfinite(z) && z >= 0.0f ? z : -1.0f;
@@ -190,7 +197,7 @@ Image Denoiser::run(const DenoiseInput& input) {
 
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
             DenoisePush push{w, rows, 0, 0, options_.sigmaLuminance, options_.sigmaNormal, options_.sigmaDepth,
-                             options_.albedoEpsilon, options_.localLinearRidge};
+                             options_.albedoEpsilon, options_.localLinearRidge, options_.normalNoise};
             impl_->demodulate->recordDispatch8x8(cmd, w, rows, &push, sizeof push);
             for (std::uint32_t level = 0; level < options_.iterations; ++level) {
                 push.step = 1u << level;

@@ -25,6 +25,10 @@ struct DenoiseInput {
     const std::vector<float>* depth = nullptr;  ///< per pixel (row-major), distance along the camera's
                                                 ///< view axis of the first hit (scene units); +inf
                                                 ///< (or any non-finite value) where no sample hit
+    /// Optional, per pixel: the samples the mean normal averages (FeatureImages::samples). With
+    /// it the normal's edge-stopping allows for the mean normal's own noise (normalNoise); without
+    /// it every normal is taken as exact.
+    const std::vector<float>* samples = nullptr;
 };
 
 /// The filter's parameters; the defaults are SVGF's (Schied et al. 2017, sec. 4.5), measured on
@@ -45,6 +49,13 @@ struct DenoiseOptions {
     /// any two such pixels would never mix. Such a pixel is filtered as one without a normal
     /// (alike with others of its kind, never mixed with pixels that have one).
     float minNormalLength = 0.5f;
+    /// A mean normal of n samples that disagree (an edge, a corner, depth of field, fog) is itself
+    /// noisy: its direction's variance is about theta^2 = (1 - |mean|^2) / (n |mean|^2) (rad^2;
+    /// samples of unit normals or none). Between two pixels the cosine's exponent is
+    /// min(sigmaNormal, normalNoise / (theta_p^2 + theta_q^2)), so two normals that differ by
+    /// about their noise weigh exp(-normalNoise / 2) instead of nothing. 0: every normal exact
+    /// (SVGF's rule). Needs DenoiseInput::samples.
+    float normalNoise = 1.0f;
     /// Depth edge-stopping: a tap whose depth differs from the centre's by sigmaDepth times the
     /// change the centre's depth gradient predicts weighs 1/e (plus 0.1% of the depth, so a flat
     /// face facing the camera never stops the filter).

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -157,6 +158,46 @@ TEST(GpuDenoise, ShortMeanNormalsOfRandomDirectionDoNotStopTheFilter) {
     // 4096 pixels x 3 channels: the relMSE's own relative spread is ~2 %, far inside the margins.
     EXPECT_LT(kept, 0.2 * raw);
     EXPECT_GT(stopped, 0.7 * raw);
+}
+
+TEST(GpuDenoise, NoisyMeanNormalsOfMixedPixelsDoNotStopTheFilter) {
+    VKP_REQUIRE_DEVICE(dev);
+    // Every pixel straddles a fold (depth of field, a small object): each of its 16 samples finds
+    // the face (0,0,1) or (1,0,0) at even odds, so its mean normal is (0.5, 0, 0.5) plus the
+    // noise of 16 draws: its direction's standard deviation is 14 degrees (normalNoise). At
+    // sigmaNormal 128 two such normals mix only where their draws nearly agree (20 degrees apart
+    // weigh 1e-3). A constant scene: with the samples given, the filter must take off at least
+    // 95 % of the relMSE, and leave at most a quarter of what the same filter leaves with every
+    // normal taken as exact (normalNoise 0, SVGF's rule).
+    const std::uint32_t w = 64, h = 64, spp = 16;
+    const HalfSide side{{0.5f, 0.5f, 0.5f}, 1.0f, {0.0f, 0.0f, 1.0f}, 4.0f};
+    CleanScene s = twoHalves(w, h, side, side);
+    std::mt19937 rng(5);
+    for (std::size_t i = 0; i < s.normal.pixelCount(); ++i) {
+        glm::vec3 sum(0.0f);
+        for (std::uint32_t k = 0; k < spp; ++k) sum += (rng() & 1u) ? glm::vec3(0, 0, 1) : glm::vec3(1, 0, 0);
+        for (int c = 0; c < 3; ++c) s.normal.rgb[3 * i + std::size_t(c)] = sum[c] / float(spp);
+    }
+    const std::vector<float> samples(s.normal.pixelCount(), float(spp));
+    const NoisyRender r = renderNoisy(s, spp, 22);
+    auto relMse = [&](const Image& img) {
+        double e = 0.0;
+        for (std::size_t i = 0; i < img.rgb.size(); ++i) {
+            const double d = double(img.rgb[i]) - s.radiance.rgb[i];
+            e += d * d / (double(s.radiance.rgb[i]) * s.radiance.rgb[i] + 0.01);
+        }
+        return e / double(img.rgb.size());
+    };
+    DenoiseInput in = inputOf(s, r);
+    in.samples = &samples;
+    DenoiseOptions exact;
+    exact.normalNoise = 0.0f;
+    Denoiser svgf(dev, exact);
+    const double raw = relMse(r.color), kept = relMse(denoiser(dev).run(in)), stopped = relMse(svgf.run(in));
+    std::printf("  noisy mixed normals: relMSE raw %.4g, denoised %.4g, with every normal exact %.4g\n", raw, kept, stopped);
+    // 4096 pixels x 3 channels: the relMSE's own relative spread is ~2 %, far inside the margins.
+    EXPECT_LT(kept, 0.05 * raw);
+    EXPECT_LT(kept, 0.25 * stopped);
 }
 
 TEST(GpuDenoise, AGradientAgainstAnEdgeKeepsItsValue) {

@@ -67,6 +67,9 @@ TEST(AovImages, MeansDepthAndWorldPositionsFromTheSums) {
     EXPECT_FLOAT_EQ(f.albedo.rgb[2], 0.1f);
     EXPECT_FLOAT_EQ(f.normal.rgb[2], 1.0f);
     EXPECT_FLOAT_EQ(f.hitFraction[0], 0.5f);
+    EXPECT_EQ(f.samples[0], 4.0f);
+    EXPECT_EQ(f.samples[1], 2.0f);
+    EXPECT_EQ(f.samples[2], 0.0f);
     EXPECT_FLOAT_EQ(f.position.rgb[0], 101.0f);
     EXPECT_FLOAT_EQ(f.position.rgb[1], 202.0f);
     EXPECT_FLOAT_EQ(f.position.rgb[2], 290.0f);
