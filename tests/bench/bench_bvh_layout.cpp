@@ -287,6 +287,22 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
     std::fflush(stdout);
 }
 
+/// Interleaved timing rounds of the first variant of each bench (rounds: VKP_BENCH_ROUNDS): per
+/// bench, its CPU seconds per round and its CPU-time speed against bench 0 in the same round.
+struct Rounds {
+    std::vector<std::vector<double>> cpu, ratio;
+};
+Rounds timeInterleaved(std::vector<std::unique_ptr<LayoutBench>>& benches) {
+    const std::size_t rounds = std::max<std::size_t>(1, envCount("VKP_BENCH_ROUNDS", 5));
+    Rounds out{std::vector<std::vector<double>>(benches.size()), std::vector<std::vector<double>>(benches.size())};
+    std::vector<glm::uvec4> res;
+    for (std::size_t r = 0; r < rounds; ++r) {
+        for (std::size_t b = 0; b < benches.size(); ++b) out.cpu[b].push_back(benches[b]->run(0, res).second);
+        for (std::size_t b = 0; b < benches.size(); ++b) out.ratio[b].push_back(out.cpu[0].back() / out.cpu[b].back());
+    }
+    return out;
+}
+
 /// Build parameters as a lever (issue 18): the same scene built with several BvhBuildOptions,
 /// each traced by the kernels' 4-wide traversal on the same rays, rounds interleaved. Every build
 /// must give the same closest-hit distance (bits) and any-hit answer as the default build.
@@ -315,26 +331,22 @@ void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene)
         bvhs.push_back(buildFlatBvh(scene, opt.o));
         benches.push_back(std::make_unique<LayoutBench>(dev, bvhs.back(), bvhs.back().wideNodes, rays, std::vector<Variant>{wide4}));
     }
+    // Same hits as the default build; passes per ray from each build's first run.
     std::vector<glm::uvec4> ref, res;
-    benches[0]->run(0, ref);
-    for (std::size_t b = 1; b < benches.size(); ++b) {
-        benches[b]->run(0, res);
+    std::vector<double> passes(options.size(), 0.0);
+    for (std::size_t b = 0; b < benches.size(); ++b) {
+        benches[b]->run(0, b == 0 ? ref : res);
+        const std::vector<glm::uvec4>& got = b == 0 ? ref : res;
+        for (const glm::uvec4& x : got) passes[b] += double(x.z) + double(x.w >> 1u);
+        if (b == 0) continue;
         int mismatches = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) mismatches += res[i].x != ref[i].x || (res[i].w & 1u) != (ref[i].w & 1u);
         EXPECT_EQ(mismatches, 0) << label << ": build " << options[b].name << " finds other hits than the default build";
     }
     dev.instance().throwIfValidationMessages("in the BVH build-options bench");
-    const std::size_t rounds = std::max<std::size_t>(1, envCount("VKP_BENCH_ROUNDS", 5));
-    std::vector<std::vector<double>> cpu(options.size()), ratio(options.size());
-    std::vector<double> passes(options.size(), 0.0);
-    for (std::size_t r = 0; r < rounds; ++r) {
-        for (std::size_t b = 0; b < benches.size(); ++b) {
-            cpu[b].push_back(benches[b]->run(0, res).second);
-            if (r == 0)
-                for (const glm::uvec4& x : res) passes[b] += double(x.z) + double(x.w >> 1u);
-        }
-        for (std::size_t b = 0; b < benches.size(); ++b) ratio[b].push_back(cpu[0].back() / cpu[b].back());
-    }
+    const Rounds t = timeInterleaved(benches);
+    const std::size_t rounds = t.cpu[0].size();
+    const std::vector<std::vector<double>>&cpu = t.cpu, &ratio = t.ratio;
     const double raysPerRun = 2.0 * double(rays.size());
     std::printf("\n%s: build options, 4-wide texel traversal, %zu ray slots (closest + any), %zu interleaved rounds\n", label,
                 rays.size(), rounds);
@@ -430,12 +442,9 @@ void benchRayOrder(VulkanDevice& dev, const char* label, const Scene& scene) {
         EXPECT_EQ(mismatches, 0) << label << ": order " << orders[k].name << " finds other hits";
     }
     dev.instance().throwIfValidationMessages("in the ray-order bench");
-    const std::size_t rounds = std::max<std::size_t>(1, envCount("VKP_BENCH_ROUNDS", 5));
-    std::vector<std::vector<double>> cpu(orders.size()), ratio(orders.size());
-    for (std::size_t r = 0; r < rounds; ++r) {
-        for (std::size_t k = 0; k < orders.size(); ++k) cpu[k].push_back(benches[k]->run(0, res).second);
-        for (std::size_t k = 0; k < orders.size(); ++k) ratio[k].push_back(cpu[0].back() / cpu[k].back());
-    }
+    const Rounds t = timeInterleaved(benches);
+    const std::size_t rounds = t.cpu[0].size();
+    const std::vector<std::vector<double>>&cpu = t.cpu, &ratio = t.ratio;
     const double raysPerRun = 2.0 * double(rays.size());
     std::printf("\n%s: ray order, 4-wide texel traversal, %zu ray slots (closest + any), %zu interleaved rounds\n", label,
                 rays.size(), rounds);

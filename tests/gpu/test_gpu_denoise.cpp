@@ -140,19 +140,11 @@ TEST(GpuDenoise, ShortMeanNormalsOfRandomDirectionDoNotStopTheFilter) {
         for (int c = 0; c < 3; ++c) s.normal.rgb[3 * i + std::size_t(c)] = float(d[c]);
     }
     const NoisyRender r = renderNoisy(s, 4, 21);
-    auto relMse = [&](const Image& img) {
-        double e = 0.0;
-        for (std::size_t i = 0; i < img.rgb.size(); ++i) {
-            const double d = double(img.rgb[i]) - s.radiance.rgb[i];
-            e += d * d / (double(s.radiance.rgb[i]) * s.radiance.rgb[i] + 0.01);
-        }
-        return e / double(img.rgb.size());
-    };
     DenoiseOptions trusting;
     trusting.minNormalLength = 0.0f;
     Denoiser old(dev, trusting);
-    const double raw = relMse(r.color), kept = relMse(denoiser(dev).run(inputOf(s, r))),
-                 stopped = relMse(old.run(inputOf(s, r)));
+    const double raw = relMse(r.color, s.radiance), kept = relMse(denoiser(dev).run(inputOf(s, r)), s.radiance),
+                 stopped = relMse(old.run(inputOf(s, r)), s.radiance);
     std::printf("  short random normals: relMSE raw %.4g, denoised %.4g, with every normal trusted %.4g\n", raw, kept,
                 stopped);
     // 4096 pixels x 3 channels: the relMSE's own relative spread is ~2 %, far inside the margins.
@@ -180,20 +172,13 @@ TEST(GpuDenoise, NoisyMeanNormalsOfMixedPixelsDoNotStopTheFilter) {
     }
     const std::vector<float> samples(s.normal.pixelCount(), float(spp));
     const NoisyRender r = renderNoisy(s, spp, 22);
-    auto relMse = [&](const Image& img) {
-        double e = 0.0;
-        for (std::size_t i = 0; i < img.rgb.size(); ++i) {
-            const double d = double(img.rgb[i]) - s.radiance.rgb[i];
-            e += d * d / (double(s.radiance.rgb[i]) * s.radiance.rgb[i] + 0.01);
-        }
-        return e / double(img.rgb.size());
-    };
     DenoiseInput in = inputOf(s, r);
     in.samples = &samples;
     DenoiseOptions exact;
     exact.normalNoise = 0.0f;
     Denoiser svgf(dev, exact);
-    const double raw = relMse(r.color), kept = relMse(denoiser(dev).run(in)), stopped = relMse(svgf.run(in));
+    const double raw = relMse(r.color, s.radiance), kept = relMse(denoiser(dev).run(in), s.radiance),
+                 stopped = relMse(svgf.run(in), s.radiance);
     std::printf("  noisy mixed normals: relMSE raw %.4g, denoised %.4g, with every normal exact %.4g\n", raw, kept, stopped);
     // 4096 pixels x 3 channels: the relMSE's own relative spread is ~2 %, far inside the margins.
     EXPECT_LT(kept, 0.05 * raw);
