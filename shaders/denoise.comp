@@ -111,8 +111,7 @@ void atrousLevel(int x, int y, int i) {
     vec4 centre = texelFetch(uIllumIn, i);
     vec4 g = texelFetch(uGuide, i);
     bool hit = g.w >= 0.0;
-    bool hasNormal = dot(g.xyz, g.xyz) > 0.0;
-    float lenP = length(g.xyz);  // 1 / (1 + theta_p^2): the direction's variance (host)
+    float lenP = length(g.xyz);  // 0: no normal; else 1 / (1 + theta_p^2), its direction's variance (host)
     vec2 grad = hit ? depthGradient(x, y, g.w) : vec2(0.0);
     float lumP = dot(kLuma, centre.rgb);
     float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
@@ -136,17 +135,16 @@ void atrousLevel(int x, int y, int i) {
             } else if (hit) {
                 float expected = abs(dot(grad, vec2(float(tx * s), float(ty * s))));
                 logW -= abs(g.w - gq.w) / (push.sigmaZ * expected + zEps);
-                bool qHasNormal = dot(gq.xyz, gq.xyz) > 0.0;
                 // Two hits without a normal (a mean normal of 0) are alike; one without is not.
                 // Two normals: the cosine of their directions, its exponent lowered where the two
                 // mean normals are noisy (DenoiseOptions::normalNoise).
-                if (hasNormal && qHasNormal) {
-                    float lenQ = length(gq.xyz);
+                float lenQ = length(gq.xyz);
+                if (lenP > 0.0 && lenQ > 0.0) {
                     float theta2 = (1.0 / lenP - 1.0) + (1.0 / lenQ - 1.0);
                     float sN = push.normalNoise > 0.0 ? min(push.sigmaN, push.normalNoise / max(theta2, 1e-30)) : push.sigmaN;
                     logW += sN * log(max(dot(g.xyz, gq.xyz) / (lenP * lenQ), 1e-30));
-                } else if (hasNormal || qHasNormal) {
-                    logW += push.sigmaN * log(1e-30);
+                } else if (lenP > 0.0 || lenQ > 0.0) {
+                    logW = -1e30;
                 }
             }
             float wq = kB3[tx + 2] * kB3[ty + 2] * exp(logW);

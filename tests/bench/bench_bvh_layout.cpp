@@ -69,7 +69,7 @@ struct Variant {
     const char* name;
     std::span<const std::uint32_t> spirv;
     vk::DescriptorType dataType;  ///< descriptor type of bindings 1 and 2
-    bool wide = false;            ///< nodes in the 4-wide layout (GpuWideNode)
+    bool wide = false;            ///< nodes not in the binary layout (GpuWideNode): hits compared by t, not pass counts
     bool bda = false;             ///< nodes and primitives read through buffer device addresses (push constants)
     bool quantized = false;       ///< 4-wide nodes quantized to 4 texels (shaders/tests/wide_quantized.h)
     bool wide8 = false;           ///< 8-wide nodes (host/bvh/wide_pack.h packWide8, shaders/tests/traverse_wide8.glsl)
@@ -335,10 +335,12 @@ void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene)
     std::vector<glm::uvec4> ref, res;
     std::vector<double> passes(options.size(), 0.0);
     for (std::size_t b = 0; b < benches.size(); ++b) {
-        benches[b]->run(0, b == 0 ? ref : res);
-        const std::vector<glm::uvec4>& got = b == 0 ? ref : res;
-        for (const glm::uvec4& x : got) passes[b] += double(x.z) + double(x.w >> 1u);
-        if (b == 0) continue;
+        benches[b]->run(0, res);
+        for (const glm::uvec4& x : res) passes[b] += double(x.z) + double(x.w >> 1u);
+        if (b == 0) {
+            ref = res;
+            continue;
+        }
         int mismatches = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) mismatches += res[i].x != ref[i].x || (res[i].w & 1u) != (ref[i].w & 1u);
         EXPECT_EQ(mismatches, 0) << label << ": build " << options[b].name << " finds other hits than the default build";
