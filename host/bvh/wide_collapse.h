@@ -1,8 +1,9 @@
 // Collapse of a flattened binary BVH (FlatBvh, two child boxes per node) into a 4-wide tree (or
 // N-wide: the layout benchmark measures 8): each wide node takes the up to four (N) subtrees
 // found by repeatedly opening the inner child of largest surface area (the usual greedy collapse,
-// e.g. Wald et al. 2008 "Getting rid of packets" and madmann91/bvh's mini-tree collapse). Leaves stay the binary tree's leaves, so FlatBvh::prims is
-// reused unchanged. Knows nothing of the GPU layout (that is wide_pack.h).
+// e.g. Wald et al. 2008 "Getting rid of packets" and madmann91/bvh's mini-tree collapse). Leaves
+// stay the binary tree's leaves, so FlatBvh::prims is reused unchanged. Knows nothing of the GPU
+// layout (that is wide_pack.h).
 #pragma once
 #include <array>
 #include <cstdint>
