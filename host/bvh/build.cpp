@@ -4,6 +4,7 @@
 // result is the same node for node whatever the thread count (a forked subtree is spliced in where
 // the sequential build would have put it).
 #include "bvh/build.h"
+#include "bvh/sbvh.h"
 
 #include <algorithm>
 #include <array>
@@ -435,6 +436,12 @@ BvhBuildTree buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> ce
 }
 
 BvhBuildTree buildBvh(std::span<const Shape> shapes, const BvhBuildOptions& options) {
+    if (options.spatialSplits > 0.0f) {
+        SbvhOptions s;
+        s.base = options;
+        s.maxDuplication = options.spatialSplits;
+        return buildSbvh(shapes, s);
+    }
     std::vector<Aabb> boxes(shapes.size());
     std::vector<glm::vec3> centroids(shapes.size());
     for (std::size_t i = 0; i < shapes.size(); ++i) {

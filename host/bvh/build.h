@@ -59,6 +59,10 @@ struct BvhBuildOptions {
     /// Threads to build with (subtrees of >= 4096 primitives go to free threads); 0: one per
     /// hardware thread. The tree is the same, node for node, for every count.
     std::uint32_t threads = 0;
+    /// > 0: the BVHs built over shapes (buildBvh's shape overload: a scene's shapes, each
+    /// instanced mesh) get spatial splits (host/bvh/sbvh.h), with at most this fraction
+    /// of extra primitive references; 0: off (binned SAH over whole primitives).
+    float spatialSplits = 0.0f;
 };
 
 /// One node of the build tree. Inner nodes: count == 0, children at nodes[index] and
@@ -89,7 +93,9 @@ struct BvhBuildTree {
 BvhBuildTree buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
                       const BvhBuildOptions& options = {});
 
-/// Convenience: buildBvh over shapeBounds() of each shape, centroids = box centres.
+/// Convenience: buildBvh over shapeBounds() of each shape, centroids = box centres; with
+/// options.spatialSplits > 0, buildSbvh (sbvh.h) instead, whose primIndices may name a shape more
+/// than once.
 BvhBuildTree buildBvh(std::span<const Shape> shapes, const BvhBuildOptions& options = {});
 
 }  // namespace vkp

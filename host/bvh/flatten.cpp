@@ -78,7 +78,9 @@ double sahCost(const BvhBuildTree& tree, float traversalCost, float intersection
 FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::size_t n = scene.shapes.size();
-    if (tree.primIndices.size() != n || (n > 0) != !tree.nodes.empty())
+    // A spatial-split tree (sbvh.h) may reference a shape from several leaves: m >= n references.
+    const std::size_t m = tree.primIndices.size();
+    if (m < n || (n > 0) != !tree.nodes.empty())
         throw std::invalid_argument("flattenBvh: the tree was not built over these shapes");
 
     std::vector<std::uint32_t> lightPlusOne(n, 0u);
@@ -90,9 +92,9 @@ FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
     }
 
     FlatBvh out;
-    out.prims.resize(n);
+    out.prims.resize(m);
     out.primToShape = tree.primIndices;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < m; ++i) {
         const std::uint32_t s = tree.primIndices[i];
         if (s >= n) throw std::invalid_argument("flattenBvh: primitive index out of range");
         if (scene.shapes[s].material >= kMaxMaterial)
@@ -101,7 +103,7 @@ FlatBvh flattenBvh(const BvhBuildTree& tree, const Scene& scene) {
         out.prims[i] = packShape(scene.shapes[s], lightPlusOne[s]);
     }
 
-    flattenNodes(tree, n, out);
+    flattenNodes(tree, m, out);
     out.stats.flattenMs = msSince(t0);
     return out;
 }

@@ -63,7 +63,8 @@ const Shape* primShape(const Scene& scene, const FlatBvh& bvh, std::size_t i);
 /// (1: never hit), p2.w = bits of lightPlusOne (light index + 1, 0 = none).
 gpu::GpuPrim packShape(const Shape& s, std::uint32_t lightPlusOne);
 
-/// Flatten a build tree over scene.shapes (tree built from those shapes in that order). A tree
+/// Flatten a build tree over scene.shapes (tree built from those shapes in that order; a
+/// spatial-split tree, sbvh.h, may name a shape from several leaves: one prim per reference). A tree
 /// whose root is a leaf (0 or 1 primitive) becomes one GpuNode whose unused child slot is empty
 /// (GPU_NODE_EMPTY, inverted box). Throws InputError on a material index >= 2^30 or a light index
 /// that is not a shape; std::invalid_argument when the tree does not match the shapes.

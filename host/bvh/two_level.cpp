@@ -99,7 +99,7 @@ FlatBvh buildMeshBvh(const Scene& scene, const InstancedMesh& mesh, const BvhBui
         out.prims.push_back(packShape(mesh.shapes[s], 0u));
     }
     out.primToShape = tree.primIndices;
-    flattenNodes(tree, mesh.shapes.size(), out);
+    flattenNodes(tree, tree.primIndices.size(), out);  // spatial splits: a triangle may have several
     out.stats.buildMs = buildMs;
     out.stats.flattenMs = msSince(t1);
     const auto t2 = std::chrono::steady_clock::now();

@@ -92,6 +92,9 @@ render options:
   --instancing M          glTF: auto (default: a mesh several nodes use, or of a file a JSON scene includes
                           several times, is stored once, two-level BVH) | flatten (every node's triangles
                           placed in the world); also for 'vkpath info'
+  --spatial-splits        build the BVH with spatial splits (SBVH: a triangle may sit in several leaves):
+                          fewer traversal steps where large or long triangles overlap others, a slower
+                          build (docs/performance.md "Spatial splits"); also for 'vkpath info'
   --allow-path DIR        a folder (and those below it) that the scene's references may reach besides
                           the referring file's own: included glTF files, environment maps, glTF buffers
                           and images (repeatable; symbolic links are followed before the check)
@@ -166,6 +169,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         if (f == "--gltf-scene") { a.gltfScene = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
         if (f == "--camera") { a.camera = parseUint(f, value(f), 0, 0x7fffffffu); continue; }
         if (f == "--allow-path") { a.allowPaths.emplace_back(fileValue(f)); continue; }
+        if (f == "--spatial-splits") { a.spatialSplits = true; continue; }
         if (f == "--instancing") {
             const std::string v = value(f);
             if (v == "flatten") a.instancing = false;
@@ -282,7 +286,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
     }
     if (a.command == Command::Merge) {
         if (a.width || a.height || !a.device.empty() || a.validate || a.gltfScene || a.camera || a.background ||
-            !a.environment.empty() || a.environmentStrength || a.environmentRotate || !a.instancing)
+            !a.environment.empty() || a.environmentStrength || a.environmentRotate || !a.instancing || a.spatialSplits)
             usage("vkpath merge takes -o, --partial, --aov, --exposure and --quiet only");
         if (!renderOnlyFlag.empty()) usage("vkpath merge takes -o, --partial, --aov, --exposure and --quiet, not " + renderOnlyFlag);
         if (a.parts.empty()) usage("vkpath merge needs partial files (written by vkpath render --partial)");

@@ -33,6 +33,7 @@ struct CliArgs {
     std::optional<std::uint32_t> gltfScene;  ///< --gltf-scene N: scene of a .gltf/.glb (default: the file's)
     std::optional<std::uint32_t> camera;     ///< --camera N: camera of a .gltf/.glb (default: its first perspective one)
     bool instancing = true;                  ///< --instancing auto (true) | flatten (false): glTF shared meshes
+    bool spatialSplits = false;              ///< --spatial-splits: BVHs with spatial splits (host/bvh/sbvh.h)
     /// --allow-path DIR (repeatable): folders a scene's file references may reach besides the
     /// referring file's own (scene/file_references.h).
     std::vector<std::filesystem::path> allowPaths;

@@ -32,6 +32,7 @@
 #include <sys/resource.h>
 
 #include "bvh/flatten.h"
+#include "bvh/sbvh.h"
 #include "traverse_binary_cpu.h"
 #include "bvh/wide_pack.h"
 #include "bvh_test_scenes.h"
@@ -303,15 +304,17 @@ Rounds timeInterleaved(std::vector<std::unique_ptr<LayoutBench>>& benches) {
     return out;
 }
 
-/// Build parameters as a lever (issue 18): the same scene built with several BvhBuildOptions,
-/// each traced by the kernels' 4-wide traversal on the same rays, rounds interleaved. Every build
-/// must give the same closest-hit distance (bits) and any-hit answer as the default build.
+/// Build parameters as a lever (issue 18): the same scene built with several BvhBuildOptions, and
+/// with spatial splits (host/bvh/sbvh.h) at two duplication budgets, each traced by the kernels'
+/// 4-wide traversal on the same rays, rounds interleaved. Every build must give the same
+/// closest-hit distance (bits) and any-hit answer as the default build.
 void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene) {
     struct Option {
         const char* name;
         BvhBuildOptions o;
+        float sbvhDuplication = -1.0f;  ///< >= 0: buildSbvh with this budget (SbvhOptions::maxDuplication)
     };
-    std::vector<Option> options(5);
+    std::vector<Option> options(7);
     options[0].name = "default (leaf <= 4, Ct 1, Ci 1)";
     options[1].name = "leaf <= 8";
     options[1].o.maxLeafSize = 8;
@@ -322,13 +325,26 @@ void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene)
     options[3].o.traversalCost = 2.0f;
     options[4].name = "leaf <= 4, Ct 0.5";
     options[4].o.traversalCost = 0.5f;
+    options[5].name = "SBVH, duplication <= 0.3";
+    options[5].sbvhDuplication = 0.3f;
+    options[6].name = "SBVH, duplication <= 1";
+    options[6].sbvhDuplication = 1.0f;
     const Variant wide4 = {"wide4 texel", std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)),
                            vk::DescriptorType::eUniformTexelBuffer, true};
     const std::vector<Ray> rays = incoherentRays(scene, envCount("VKP_BENCH_RAYS", 131072), 17);
     std::vector<FlatBvh> bvhs;
     std::vector<std::unique_ptr<LayoutBench>> benches;
     for (const Option& opt : options) {
-        bvhs.push_back(buildFlatBvh(scene, opt.o));
+        if (opt.sbvhDuplication >= 0.0f) {
+            SbvhOptions so;
+            so.base = opt.o;
+            so.maxDuplication = opt.sbvhDuplication;
+            FlatBvh flat = flattenBvh(buildSbvh(scene.shapes, so), scene);
+            flat.wideNodes = buildWideNodes(flat);
+            bvhs.push_back(std::move(flat));
+        } else {
+            bvhs.push_back(buildFlatBvh(scene, opt.o));
+        }
         benches.push_back(std::make_unique<LayoutBench>(dev, bvhs.back(), bvhs.back().wideNodes, rays, std::vector<Variant>{wide4}));
     }
     // Same hits as the default build; passes per ray from each build's first run.
@@ -352,12 +368,13 @@ void benchBuildOptions(VulkanDevice& dev, const char* label, const Scene& scene)
     const double raysPerRun = 2.0 * double(rays.size());
     std::printf("\n%s: build options, 4-wide texel traversal, %zu ray slots (closest + any), %zu interleaved rounds\n", label,
                 rays.size(), rounds);
-    std::printf("| build | wide nodes | SAH cost | passes per ray | Mrays/CPU-s (median) | CPU-time speed vs default: median [min, max] |\n");
-    std::printf("|---|---|---|---|---|---|\n");
+    std::printf("| build | primitive references | wide nodes | SAH cost | passes per ray | Mrays/CPU-s (median) | CPU-time speed vs default: median [min, max] |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
     for (std::size_t b = 0; b < options.size(); ++b) {
         const auto [lo, hi] = std::minmax_element(ratio[b].begin(), ratio[b].end());
-        std::printf("| %s | %zu | %.2f | %.1f | %.3f | %.3f [%.3f, %.3f] |\n", options[b].name, bvhs[b].wideNodes.size(),
-                    bvhs[b].stats.sahCost, passes[b] / raysPerRun, raysPerRun / median(cpu[b]) * 1e-6, median(ratio[b]), *lo, *hi);
+        std::printf("| %s | %zu | %zu | %.2f | %.1f | %.3f | %.3f [%.3f, %.3f] |\n", options[b].name, bvhs[b].prims.size(),
+                    bvhs[b].wideNodes.size(), bvhs[b].stats.sahCost, passes[b] / raysPerRun, raysPerRun / median(cpu[b]) * 1e-6,
+                    median(ratio[b]), *lo, *hi);
     }
     std::fflush(stdout);
 }
@@ -497,6 +514,11 @@ TEST(BenchBvhLayout, RayOrderCornellClassic) {
 TEST(BenchBvhLayout, RayOrderMillionTriangleMesh) {
     VKP_REQUIRE_DEVICE(dev);
     benchRayOrder(dev, "cornell-classic + 1M-triangle mesh", cornellWithMillionTriangleMesh());
+}
+
+TEST(BenchBvhLayout, BuildOptionsCornellClassic) {
+    VKP_REQUIRE_DEVICE(dev);
+    benchBuildOptions(dev, "cornell-classic", cornellClassic());
 }
 
 TEST(BenchBvhLayout, BuildOptionsMillionTriangleMesh) {

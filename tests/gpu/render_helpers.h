@@ -35,11 +35,13 @@ struct TestRender {
 /// The pipeline of the CLI (render/render_job.h): the BVH of `scene` (two-level when the scene has
 /// instances), the packed arrays (packGpuArrays) and the renderer with options `o`. Throws what the
 /// Renderer throws (DeviceError beyond the device's limits). `limits` (optional): pretend the
-/// device has these (to force bands of rows on a small image).
-inline TestRender makeRender(VulkanDevice& dev, Scene scene, const RenderOptions& o, const DeviceLimits* limits = nullptr) {
+/// device has these (to force bands of rows on a small image). `bvhOptions`: how the BVH is built
+/// (RenderJob::bvh).
+inline TestRender makeRender(VulkanDevice& dev, Scene scene, const RenderOptions& o, const DeviceLimits* limits = nullptr,
+                             const BvhBuildOptions& bvhOptions = {}) {
     TestRender r;
     r.scene = std::move(scene);
-    r.bvh = buildSceneBvh(r.scene);
+    r.bvh = buildSceneBvh(r.scene, bvhOptions);
     r.arrays = packGpuArrays(r.scene, r.bvh, o);
     r.renderer = std::make_unique<Renderer>(dev, r.arrays, o, limits);
     return r;

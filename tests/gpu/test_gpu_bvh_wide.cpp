@@ -13,10 +13,10 @@
 namespace vkp::test {
 namespace {
 
-/// The 4-wide layout: buildWideNodes, traverse_wide_cpu.h.
-BvhCompare comparer(VulkanDevice& dev) {
-    return [&dev](const std::vector<Shape>& shapes, const std::vector<Ray>& rays) {
-        const FlatBvh bvh = buildFlatBvh(makeScene(shapes));
+/// The 4-wide layout: buildWideNodes, traverse_wide_cpu.h; `options`: how the tree is built.
+BvhCompare comparer(VulkanDevice& dev, const BvhBuildOptions& options = {}) {
+    return [&dev, options](const std::vector<Shape>& shapes, const std::vector<Ray>& rays) {
+        const FlatBvh bvh = buildFlatBvh(makeScene(shapes), options);
         const std::vector<gpu::GpuWideNode> nodes = buildWideNodes(bvh);
         return compareTraversal(
             dev, std::span<const std::uint32_t>(kBvhTraceWideSpv, std::size(kBvhTraceWideSpv)), nodes.data(),
@@ -47,6 +47,24 @@ TEST(GpuBvhWide, AxisParallelAndNonFiniteRaysMatchCpu) {
 TEST(GpuBvhWide, EmptyAndSinglePrimitiveScenes) {
     VKP_REQUIRE_DEVICE(dev);
     expectEmptyAndSinglePrimitiveScenesMatch(comparer(dev));
+}
+
+/// Spatial splits (host/bvh/sbvh.h): a primitive may be in several leaves. The unit tests check
+/// the CPU traversal of such trees against brute force; here the kernel against the CPU.
+BvhBuildOptions withSpatialSplits() {  // the whole budget: more cut references to check
+    BvhBuildOptions o;
+    o.spatialSplits = 1.0f;
+    return o;
+}
+
+TEST(GpuBvhWide, SpatialSplitsMixedPrimitivesMatchCpu) {
+    VKP_REQUIRE_DEVICE(dev);
+    expectMixedPrimitivesMatch(comparer(dev, withSpatialSplits()));
+}
+
+TEST(GpuBvhWide, SpatialSplitsAxisParallelAndNonFiniteRaysMatchCpu) {
+    VKP_REQUIRE_DEVICE(dev);
+    expectAxisAndNonFiniteRaysMatch(comparer(dev, withSpatialSplits()));
 }
 
 }  // namespace

@@ -203,6 +203,30 @@ TEST(TwoLevelBvh, CpuTraversalAgreesWithTheFlattenedScene) {
     EXPECT_LT(worstT, 1e-5);
 }
 
+/// With spatial splits (host/bvh/sbvh.h) each mesh's bottom level may name a triangle from several
+/// leaves; the hits must be those of the tree without them, bit for bit.
+TEST(TwoLevelBvh, SpatialSplitsFindTheSameHits) {
+    const Scene scene = instancedScene();
+    BvhBuildOptions spatial;
+    spatial.spatialSplits = 1.0f;
+    const FlatBvh plain = buildTwoLevelBvh(scene), split = buildTwoLevelBvh(scene, spatial);
+    std::printf("two-level: %zu primitives, %zu with spatial splits\n", plain.prims.size(), split.prims.size());
+    EXPECT_GT(split.prims.size(), plain.prims.size()) << "no triangle was split";
+    const std::vector<test::Ray> rays = test::randomRays(test::flattenedScene(scene).shapes, 20000, 43, 25.0f);
+    int hits = 0;
+    for (const test::Ray& r : rays) {
+        const TraceResult a = traceClosestWideCpu(plain.wideNodes, plain.prims, plain.instances, r.o, r.d, r.tmin, r.tmax);
+        const TraceResult b = traceClosestWideCpu(split.wideNodes, split.prims, split.instances, r.o, r.d, r.tmin, r.tmax);
+        ASSERT_EQ(a.hit, b.hit);
+        ASSERT_EQ(traceAnyWideCpu(split.wideNodes, split.prims, split.instances, r.o, r.d, r.tmin, r.tmax).hit, a.hit);
+        if (!a.hit) continue;
+        ++hits;
+        ASSERT_EQ(a.t, b.t);
+        ASSERT_EQ(a.instance, b.instance);
+    }
+    EXPECT_GT(hits, 5000);
+}
+
 TEST(TwoLevelBvh, WorldHitGeometryMatchesTheFlattenedTriangleAndRaysLeaveIt) {
     const Scene scene = instancedScene();
     const FlatBvh two = buildTwoLevelBvh(scene);

@@ -178,6 +178,13 @@ TEST(CliArgs, InfoTakesTheImageSize) {
     EXPECT_NE(errorOf({"info", "s.json", "--width", "16385"}).find("--width"), std::string::npos);
 }
 
+TEST(CliArgs, SpatialSplitsOffByDefaultForRenderAndInfoNotMerge) {
+    EXPECT_FALSE(parse({"render", "s.json"}).spatialSplits);
+    EXPECT_TRUE(parse({"render", "s.json", "--spatial-splits"}).spatialSplits);
+    EXPECT_TRUE(parse({"info", "s.glb", "--spatial-splits"}).spatialSplits);
+    EXPECT_NE(errorOf({"merge", "a.exr", "-o", "x.png", "--spatial-splits"}).find("vkpath merge takes"), std::string::npos);
+}
+
 TEST(CliArgs, InstancingAutoByDefaultFlattenOnRequestAlsoForInfo) {
     EXPECT_TRUE(parse({"render", "s.glb"}).instancing);
     EXPECT_FALSE(parse({"render", "s.glb", "--instancing", "flatten"}).instancing);

@@ -2,6 +2,7 @@
 // line and exit code 1 for a broken file. `vkpath info` never opens a device.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 
 #include "cli/args.h"
@@ -54,6 +55,21 @@ TEST_F(GltfCli, InfoOfAGlbAndItsOtherScene) {
     EXPECT_EQ(g.exitCode, 0) << g.err;
     EXPECT_NE(g.out.find("image        512x341"), std::string::npos) << g.out;
     EXPECT_NE(g.out.find("3 sampled objects (3 emitting)"), std::string::npos) << g.out;
+}
+
+TEST_F(GltfCli, InfoWithSpatialSplitsCountsTheReferences) {
+    const std::string scene = (scenesDir() / "gltf" / "include-instances.json").string();
+    const ProcessResult plain = run({"info", scene});
+    const ProcessResult r = run({"info", scene, "--spatial-splits"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(plain.out.find("spatial      splits on"), std::string::npos) << plain.out;
+    const std::size_t at = r.out.find("spatial      splits on: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    std::size_t refs = 0, prims = 0;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "spatial      splits on: %zu primitive references on the device for %zu", &refs, &prims), 2)
+        << r.out;
+    EXPECT_GE(refs, prims);
+    EXPECT_GT(prims, 0u);
 }
 
 TEST_F(GltfCli, InfoOfAJsonSceneIncludingAFileSeveralTimes) {
