@@ -9,7 +9,9 @@
 // on lavapipe a branch never skips, design.md "Every reachable branch runs"):
 //  PASS 0, demodulate: out = (color / a, var_L) with a = max(albedo, eps) per channel and var_L the
 //          variance of the demodulated luminance (channels taken as fully correlated: the standard
-//          deviations add), from the variance of the pixel's mean.
+//          deviations add), from the variance of the pixel's mean. With push.fireflyBound > 0 a
+//          firefly is scaled down first: a pixel brighter than each of its 8 neighbours' value
+//          plus fireflyBound of their standard deviations, by no more than fireflyBound of its own.
 //  PASS 1, one a-trous level of step 2^level: a 5x5 B3-spline kernel with holes, each tap weighted
 //          by the edge-stopping functions of SVGF eq. 2-5 on normal, depth and luminance (the
 //          latter in units of sigmaL x the 3x3-blurred standard deviation of the centre); the
@@ -58,6 +60,8 @@ layout(push_constant) uniform Push {
     float albedoEps;  // the albedo's floor for demodulation
     float ridge;      // PASS 1: >= 0: local linear fit with this ridge on the slopes; < 0: weighted mean
     float normalNoise;  // PASS 1: > 0: the cosine's exponent is min(sigmaN, normalNoise / (theta_p^2 + theta_q^2))
+    float fireflyBound;  // PASS 0: > 0: a pixel's demodulated luminance is at most the largest of its
+                         // 8 neighbours' plus fireflyBound of their standard deviations
 } push;
 
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);  // Rec. 709 luminance
@@ -85,11 +89,35 @@ vec2 depthGradient(int x, int y, float z) {
     return g;
 }
 
-void demodulate(int i) {
-    vec3 a = demodAlbedo(i);
-    vec3 sd = sqrt(max(texelFetch(uVariance, i).rgb, vec3(0.0))) / a;
-    float sdL = dot(kLuma, sd);
-    illumOut[i] = vec4(texelFetch(uColor, i).rgb / a, sdL * sdL);
+/// Standard deviation of pixel j's demodulated luminance (channels fully correlated) and, in
+/// `lum`, that luminance.
+float demodulatedSd(int j, out float lum) {
+    vec3 a = demodAlbedo(j);
+    lum = dot(kLuma, texelFetch(uColor, j).rgb / a);
+    return dot(kLuma, sqrt(max(texelFetch(uVariance, j).rgb, vec3(0.0))) / a);
+}
+
+void demodulate(int x, int y, int i) {
+    float lum;
+    float sdL = demodulatedSd(i, lum);
+    vec3 c = texelFetch(uColor, i).rgb / demodAlbedo(i);
+    if (push.fireflyBound > 0.0) {
+        // A firefly (one rare, bright sample in a pixel) is brighter than every neighbour's value
+        // plus fireflyBound of that neighbour's standard deviations: scaled down to that bound.
+        float bound = -1.0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                int qx = x + dx, qy = y + dy;
+                if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) continue;
+                float lq;
+                float sq = demodulatedSd(qy * int(push.width) + qx, lq);
+                bound = max(bound, lq + push.fireflyBound * sq);
+            }
+        // Only within the pixel's own noise: a bright pixel it is sure of (a small highlight,
+        // converged) is kept, whatever its neighbours.
+        if (bound >= 0.0 && lum > bound && lum - bound <= push.fireflyBound * sdL) c *= bound / lum;
+    }
+    illumOut[i] = vec4(c, sdL * sdL);
 }
 
 void atrousLevel(int x, int y, int i) {
@@ -181,6 +209,6 @@ void main() {
     int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
     if (x >= int(push.width) || y >= int(push.rows)) return;
     int i = y * int(push.width) + x;
-    if (PASS == 0u) demodulate(i);
+    if (PASS == 0u) demodulate(x, y, i);
     else atrousLevel(x, y, i);
 }

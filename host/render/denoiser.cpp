@@ -22,9 +22,9 @@ namespace {
 /// Must match `push` in shaders/denoise.comp.
 struct DenoisePush {
     std::uint32_t width, rows, step, remodulate;
-    float sigmaL, sigmaN, sigmaZ, albedoEps, ridge, normalNoise;
+    float sigmaL, sigmaN, sigmaZ, albedoEps, ridge, normalNoise, fireflyBound;
 };
-static_assert(sizeof(DenoisePush) == 40);
+static_assert(sizeof(DenoisePush) == 44);
 
 /// Bytes per pixel of every buffer: one vec4.
 constexpr std::uint64_t kBytesPerPixel = 16;
@@ -45,13 +45,15 @@ void checkOptions(const DenoiseOptions& o) {
         throw std::invalid_argument("denoiser: iterations must be in 1..10, not " + std::to_string(o.iterations));
     const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
     if (!positive(o.sigmaLuminance) || !positive(o.sigmaDepth) || !positive(o.albedoEpsilon) ||
-        !std::isfinite(o.sigmaNormal) || o.sigmaNormal < 0.0f || !std::isfinite(o.localLinearRidge))
-        throw std::invalid_argument("denoiser: sigmaLuminance, sigmaDepth and albedoEpsilon must be > 0, sigmaNormal >= 0, localLinearRidge finite");
+        !std::isfinite(o.sigmaNormal) || o.sigmaNormal < 0.0f || !std::isfinite(o.localLinearRidge) ||
+        !std::isfinite(o.fireflyBound) || o.fireflyBound < 0.0f)
+        throw std::invalid_argument(
+            "denoiser: sigmaLuminance, sigmaDepth and albedoEpsilon must be > 0, sigmaNormal and fireflyBound >= 0, localLinearRidge finite");
 }
 
 }  // namespace
 
-std::uint32_t filterRadius(std::uint32_t iterations) { return 2u * ((1u << iterations) - 1u); }
+std::uint32_t filterRadius(std::uint32_t iterations) { return 2u * ((1u << iterations) - 1u) + 1u; }
 
 std::vector<DenoiseBand> planDenoiseBands(std::uint32_t height, std::uint32_t maxRows, std::uint32_t halo) {
     if (height <= maxRows) return {DenoiseBand{0, height, 0, height}};
@@ -197,7 +199,8 @@ Image Denoiser::run(const DenoiseInput& input) {
 
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
             DenoisePush push{w, rows, 0, 0, options_.sigmaLuminance, options_.sigmaNormal, options_.sigmaDepth,
-                             options_.albedoEpsilon, options_.localLinearRidge, options_.normalNoise};
+                             options_.albedoEpsilon, options_.localLinearRidge, options_.normalNoise,
+                             options_.fireflyBound};
             impl_->demodulate->recordDispatch8x8(cmd, w, rows, &push, sizeof push);
             for (std::uint32_t level = 0; level < options_.iterations; ++level) {
                 push.step = 1u << level;

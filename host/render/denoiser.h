@@ -56,6 +56,15 @@ struct DenoiseOptions {
     /// about their noise weigh exp(-normalNoise / 2) instead of nothing. 0: every normal exact
     /// (SVGF's rule). Needs DenoiseInput::samples.
     float normalNoise = 1.0f;
+    /// Before filtering, a pixel whose demodulated luminance exceeds every one of its 8 neighbours'
+    /// by more than fireflyBound of that neighbour's standard deviations (of its mean) is scaled
+    /// down to the largest such bound: an isolated firefly (a rare bright path in a pixel, a
+    /// caustic seen at low spp) that the edge-stopping would otherwise keep. Biased (energy of
+    /// such paths is dropped from the denoised image, never from the raw one); 0: off. Only
+    /// where the excess is within fireflyBound of the pixel's own standard deviations, so a pixel
+    /// that is sure of its value (a small converged highlight) is kept. Measured choice:
+    /// docs/performance.md "Fireflies among their neighbours".
+    float fireflyBound = 2.0f;
     /// Depth edge-stopping: a tap whose depth differs from the centre's by sigmaDepth times the
     /// change the centre's depth gradient predicts weighs 1/e (plus 0.1% of the depth, so a flat
     /// face facing the camera never stops the filter).
@@ -85,7 +94,7 @@ struct DenoiseBand {
 
 /// Radius in pixels of everything one output pixel depends on, for `iterations` a-trous levels:
 /// sum over levels of 2 x 2^level (the 3x3 variance blur and the depth gradient reach 1 pixel,
-/// within that).
+/// within that), plus 1 for the firefly bound's 3x3 neighbours.
 std::uint32_t filterRadius(std::uint32_t iterations);
 
 /// The bands of a height-row image when one band may load at most maxRows rows: one band if the
