@@ -97,6 +97,39 @@ struct SpatialSplit {
     std::uint32_t added = 0;  // references the split adds (N_L + N_R - N), before unsplitting
 };
 
+/// The best boundary of one axis's row of nb bins by the SAH: the left side is bins [0, k), with
+/// the references counted in `enter`, the right side bins [k, nb), counted in `leave` (object
+/// bins: both their counts; spatial slabs: where references enter and where they leave).
+struct BinSweep {
+    std::uint32_t bin = 0;
+    float cost = kInf;  // A_L N_L + A_R N_R
+    Aabb left, right;
+    std::uint32_t nLeft = 0, nRight = 0;
+};
+BinSweep sweepBins(const Aabb* boxes, const std::uint32_t* enter, const std::uint32_t* leave, std::uint32_t nb) {
+    Aabb rightBox[kMaxBins];
+    std::uint32_t rightCount[kMaxBins] = {};
+    Aabb acc;
+    std::uint32_t cnt = 0;
+    for (std::uint32_t k = nb - 1; k > 0; --k) {
+        acc.grow(boxes[k]);
+        cnt += leave[k];
+        rightBox[k] = acc;
+        rightCount[k] = cnt;
+    }
+    BinSweep best;
+    acc = Aabb{};
+    cnt = 0;
+    for (std::uint32_t k = 1; k < nb; ++k) {
+        acc.grow(boxes[k - 1]);
+        cnt += enter[k - 1];
+        if (cnt == 0 || rightCount[k] == 0) continue;
+        const float cost = acc.halfArea() * static_cast<float>(cnt) + rightBox[k].halfArea() * static_cast<float>(rightCount[k]);
+        if (cost < best.cost) best = {k, cost, acc, rightBox[k], cnt, rightCount[k]};
+    }
+    return best;
+}
+
 class SbvhBuilder {
 public:
     /// rootArea: the whole tree's root box's half area (alpha's unit); freeThreads: threads that
@@ -291,32 +324,15 @@ private:
                 boxes[k].grow(r.box);
                 ++counts[k];
             }
-            Aabb rightBox[kMaxBins];
-            std::uint32_t rightCount[kMaxBins] = {};
-            Aabb acc;
-            std::uint32_t cnt = 0;
-            for (std::uint32_t k = nb - 1; k > 0; --k) {
-                acc.grow(boxes[k]);
-                cnt += counts[k];
-                rightBox[k] = acc;
-                rightCount[k] = cnt;
-            }
-            acc = Aabb{};
-            cnt = 0;
-            for (std::uint32_t k = 1; k < nb; ++k) {
-                acc.grow(boxes[k - 1]);
-                cnt += counts[k - 1];
-                if (cnt == 0 || rightCount[k] == 0) continue;
-                const float cost = acc.halfArea() * static_cast<float>(cnt) + rightBox[k].halfArea() * static_cast<float>(rightCount[k]);
-                if (cost < best.cost) {
-                    best.axis = a;
-                    best.bin = k;
-                    best.cost = cost;
-                    best.lo = cbox.lo[a];
-                    best.scale = scale;
-                    best.left = acc;
-                    best.right = rightBox[k];
-                }
+            const BinSweep sw = sweepBins(boxes, counts, counts, nb);
+            if (sw.cost < best.cost) {
+                best.axis = a;
+                best.bin = sw.bin;
+                best.cost = sw.cost;
+                best.lo = cbox.lo[a];
+                best.scale = scale;
+                best.left = sw.left;
+                best.right = sw.right;
             }
         }
         return best;
@@ -349,29 +365,12 @@ private:
                 }
                 boxes[b1].grow(rest);
             }
-            Aabb rightBox[kMaxBins];
-            std::uint32_t rightCount[kMaxBins] = {};
-            Aabb acc;
-            std::uint32_t cnt = 0;
-            for (std::uint32_t k = nb - 1; k > 0; --k) {
-                acc.grow(boxes[k]);
-                cnt += exit[k];
-                rightBox[k] = acc;
-                rightCount[k] = cnt;
-            }
-            acc = Aabb{};
-            cnt = 0;
-            for (std::uint32_t k = 1; k < nb; ++k) {
-                acc.grow(boxes[k - 1]);
-                cnt += entry[k - 1];
-                if (cnt == 0 || rightCount[k] == 0) continue;
-                const float cost = acc.halfArea() * static_cast<float>(cnt) + rightBox[k].halfArea() * static_cast<float>(rightCount[k]);
-                if (cost < best.cost) {
-                    best.axis = a;
-                    best.pos = lo + static_cast<float>(k) * width;
-                    best.cost = cost;
-                    best.added = static_cast<std::uint32_t>(cnt + rightCount[k] - refs.size());
-                }
+            const BinSweep sw = sweepBins(boxes, entry, exit, nb);
+            if (sw.cost < best.cost) {
+                best.axis = a;
+                best.pos = lo + static_cast<float>(sw.bin) * width;
+                best.cost = sw.cost;
+                best.added = static_cast<std::uint32_t>(sw.nLeft + sw.nRight - refs.size());
             }
         }
         return best;
