@@ -280,6 +280,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         rusage ru{};
         if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
         st.hugePages = hugePagesRequested();
+        st.spatialSplits = job.bvh.spatialSplits > 0.0f;
+        st.bvhPrimitives = bvh.prims.size();
         const DeviceInfo& d = device.info();
         st.deviceName = d.name;
         st.deviceType = kindName(d.kind);

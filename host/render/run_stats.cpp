@@ -163,6 +163,8 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("checkpoints", num(std::uint64_t(s.checkpoints)));
     w.raw("peak_rss_bytes", num(s.peakRssBytes));
     w.raw("huge_pages", s.hugePages ? "true" : "false");
+    w.raw("spatial_splits", s.spatialSplits ? "true" : "false");
+    w.raw("bvh_primitives", num(s.bvhPrimitives));
     w.raw("scene_buffer_bytes", num(s.sceneBufferBytes));
     w.raw("samples_per_second", num(rate(samples, s.secondsRender)));
     w.raw("rays_per_second", num(rate(double(s.rays), s.secondsRender)));

@@ -50,6 +50,9 @@ struct RunStats {
     // Memory.
     std::uint64_t peakRssBytes = 0;      ///< the process's peak resident set (getrusage; lavapipe's buffers included)
     bool hugePages = false;              ///< malloc asks for transparent huge pages (core/huge_pages.h)
+    // The BVH.
+    bool spatialSplits = false;          ///< built with spatial splits (--spatial-splits, host/bvh/sbvh.h)
+    std::uint64_t bvhPrimitives = 0;     ///< primitives on the device: one per reference (instances included)
     std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
     // The device.
     std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;

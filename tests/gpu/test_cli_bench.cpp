@@ -186,6 +186,8 @@ TEST_F(CliBench, StatsJsonKeysAndConsistency) {
     EXPECT_GE(j["scene_buffer_bytes"].get<double>(), 18 * 48);
     EXPECT_GT(j["peak_rss_bytes"].get<double>(), 1e6);
     EXPECT_TRUE(j["huge_pages"].is_boolean());
+    EXPECT_EQ(j["spatial_splits"], false);
+    EXPECT_EQ(j["bvh_primitives"], 18);  // cornell-classic's 18 quads, one reference each
     const ProcessResult v = run({"--version"});
     EXPECT_EQ(v.out, "vkpath " + j["vkpath_version"].get<std::string>() + "\n");
 }
@@ -227,6 +229,18 @@ TEST_F(CliBench, StatsJsonWithTimeLimit) {
     // --time counts from process start; the stats are written after the last image.
     EXPECT_GE(j["seconds_total"].get<double>(), 1.0);
     EXPECT_LT(j["seconds_total"].get<double>(), 10.0);  // generous: the machine may be loaded
+}
+
+TEST_F(CliBench, StatsJsonNamesTheBvhBuild) {
+    VKP_REQUIRE_DEVICE(dev);
+    removeAll({"st.json"});
+    const ProcessResult r = run({"render", scene("cornell-classic.json"), "--spp", "1", "--width", "16", "--height", "16",
+                                 "--spatial-splits", "--stats-json", "st.json", "-o", "out.png", "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream f(dir / "st.json");
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_EQ(j["spatial_splits"], true);
+    EXPECT_EQ(j["bvh_primitives"], 18);  // no cut pays among the box's 18 quads
 }
 
 // --adaptive: the render stops when every pixel has converged (a loose threshold on a tiny image),
