@@ -115,6 +115,7 @@ SETTINGS = [
     ("4 samples/dispatch", ["--samples-per-dispatch", "4"]),
     ("8 samples/dispatch", ["--samples-per-dispatch", "8"]),
     ("16 samples/dispatch", ["--samples-per-dispatch", "16"]),
+    ("spatial splits", ["--spatial-splits"]),  # the BVH build (docs/performance.md "Spatial splits")
 ]
 
 
