@@ -89,18 +89,17 @@ vec2 depthGradient(int x, int y, float z) {
     return g;
 }
 
-/// Standard deviation of pixel j's demodulated luminance (channels fully correlated) and, in
-/// `lum`, that luminance.
-float demodulatedSd(int j, out float lum) {
+/// Pixel j's demodulated colour (in `c`) and the standard deviation of its luminance (channels
+/// fully correlated).
+float demodulated(int j, out vec3 c) {
     vec3 a = demodAlbedo(j);
-    lum = dot(kLuma, texelFetch(uColor, j).rgb / a);
+    c = texelFetch(uColor, j).rgb / a;
     return dot(kLuma, sqrt(max(texelFetch(uVariance, j).rgb, vec3(0.0))) / a);
 }
 
 void demodulate(int x, int y, int i) {
-    float lum;
-    float sdL = demodulatedSd(i, lum);
-    vec3 c = texelFetch(uColor, i).rgb / demodAlbedo(i);
+    vec3 c;
+    float sdL = demodulated(i, c);
     if (push.fireflyBound > 0.0) {
         // A firefly (one rare, bright sample in a pixel) is brighter than every neighbour's value
         // plus fireflyBound of that neighbour's standard deviations: scaled down to that bound.
@@ -109,12 +108,13 @@ void demodulate(int x, int y, int i) {
             for (int dx = -1; dx <= 1; ++dx) {
                 int qx = x + dx, qy = y + dy;
                 if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) continue;
-                float lq;
-                float sq = demodulatedSd(qy * int(push.width) + qx, lq);
-                bound = max(bound, lq + push.fireflyBound * sq);
+                vec3 cq;
+                float sq = demodulated(qy * int(push.width) + qx, cq);
+                bound = max(bound, dot(kLuma, cq) + push.fireflyBound * sq);
             }
         // Only within the pixel's own noise: a bright pixel it is sure of (a small highlight,
         // converged) is kept, whatever its neighbours.
+        float lum = dot(kLuma, c);
         if (bound >= 0.0 && lum > bound && lum - bound <= push.fireflyBound * sdL) c *= bound / lum;
     }
     illumOut[i] = vec4(c, sdL * sdL);
@@ -140,6 +140,7 @@ void atrousLevel(int x, int y, int i) {
     vec4 g = texelFetch(uGuide, i);
     bool hit = g.w >= 0.0;
     float lenP = length(g.xyz);  // 0: no normal; else 1 / (1 + theta_p^2), its direction's variance (host)
+    float thetaP2 = lenP > 0.0 ? 1.0 / lenP - 1.0 : 0.0;
     vec2 grad = hit ? depthGradient(x, y, g.w) : vec2(0.0);
     float lumP = dot(kLuma, centre.rgb);
     float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
@@ -168,7 +169,7 @@ void atrousLevel(int x, int y, int i) {
                 // mean normals are noisy (DenoiseOptions::normalNoise).
                 float lenQ = length(gq.xyz);
                 if (lenP > 0.0 && lenQ > 0.0) {
-                    float theta2 = (1.0 / lenP - 1.0) + (1.0 / lenQ - 1.0);
+                    float theta2 = thetaP2 + (1.0 / lenQ - 1.0);
                     float sN = push.normalNoise > 0.0 ? min(push.sigmaN, push.normalNoise / max(theta2, 1e-30)) : push.sigmaN;
                     logW += sN * log(max(dot(g.xyz, gq.xyz) / (lenP * lenQ), 1e-30));
                 } else if (lenP > 0.0 || lenQ > 0.0) {

@@ -91,14 +91,6 @@ struct Subtree {
 /// Subtrees of at least this many primitives may go to another thread.
 constexpr std::uint32_t kForkMin = 4096;
 
-/// Levels of balanced binary splits needed to bring n primitives down to leaves of <= leafSize.
-std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize) {
-    std::size_t leaves = (n + leafSize - 1) / leafSize;
-    std::uint32_t k = 0;
-    while ((std::size_t(1) << k) < leaves) ++k;
-    return k;
-}
-
 /// Maps a centroid coordinate to a bin: floor((c - lo) * scale) clamped to [0, bins-1].
 struct Binner {
     float lo = 0.0f;
@@ -394,6 +386,13 @@ private:
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
+
+std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize) {
+    const std::size_t leaves = (n + leafSize - 1) / leafSize;
+    std::uint32_t k = 0;
+    while ((std::size_t(1) << k) < leaves) ++k;
+    return k;
+}
 
 BvhBuildTree buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
                       const BvhBuildOptions& options) {

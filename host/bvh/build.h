@@ -82,6 +82,10 @@ struct BvhBuildTree {
     std::uint32_t maxDepth = 0;  ///< deepest leaf (root = 0)
 };
 
+/// Levels of balanced binary splits needed to bring n primitives (or references) down to leaves of
+/// at most leafSize (>= 1): the depth budget both builders keep (build.cpp, sbvh.cpp).
+std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize);
+
 /// Build a BVH over n primitives given by their boxes and centroids (equal sizes, finite, lo <= hi;
 /// otherwise std::invalid_argument). Iterative (no recursion), on options.threads threads, with the
 /// same result for every thread count. Guarantees: every leaf holds

@@ -51,14 +51,6 @@ Aabb widen(const Aabb& b) {
     return r;
 }
 
-/// Levels of balanced binary splits needed to bring n references down to leaves of <= leafSize.
-std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize) {
-    const std::size_t leaves = (n + leafSize - 1) / leafSize;
-    std::uint32_t k = 0;
-    while ((std::size_t(1) << k) < leaves) ++k;
-    return k;
-}
-
 struct Ref {
     Aabb box;
     std::uint32_t id;
