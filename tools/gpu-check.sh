@@ -24,7 +24,7 @@
 # summary.json: {"device": ..., "tests": {"binaries", "passed", "failed", "failures": [...],
 # "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
 # "rays_per_second_steady", "seconds_to_first_sample", "seconds_longest_dispatch",
-# "samples_per_dispatch", "nonfinite_samples"}, ...], "seconds": total}. The
+# "samples_per_dispatch", "nonfinite_samples", "pipeline_cache_bytes_loaded"}, ...], "seconds": total}. The
 # exit status is 0 only when every test binary passed and every render succeeded.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -105,6 +105,10 @@ fi
 # is left to tools/bench.sh): a warm-up render, then a timed one.
 bench_json=""
 if [ "$run_bench" = 1 ]; then
+  # vkpath's kernel cache in the output folder: the warm-up render stores the specialized kernel
+  # and the driver's VkPipelineCache data there, and the timed render loads them
+  # (pipeline_cache_bytes_loaded > 0 where the driver keeps pipelines in it; lavapipe does not).
+  export VKPATH_CACHE_DIR="$out/kernel-cache"
   for scene in scenes/cornell-book3.json scenes/cornell-classic.json scenes/cornell-lights.json \
                scenes/spheres-book1.json scenes/env-sky.json scenes/next-week/final-scene.json; do
     name=$(basename "$scene" .json)
@@ -116,7 +120,7 @@ if [ "$run_bench" = 1 ]; then
       s=$out/$name.json
       entry="{\"scene\": $(json_str "$scene"), \"size\": \"${size}x$size\", \"seconds\": $seconds"
       for k in spp rays_per_second rays_per_second_steady seconds_to_first_sample seconds_longest_dispatch \
-               samples_per_dispatch workgroup nonfinite_samples loop_guard_paths; do
+               samples_per_dispatch workgroup nonfinite_samples loop_guard_paths pipeline_cache_bytes_loaded; do
         entry+=", \"$k\": $(json_field "$s" "$k")"
       done
       entry+="}"

@@ -79,6 +79,8 @@ render options:
   --variant V             auto (default: compile in only what the scene needs) | full
   --specialize W          host (default: the variant's constants baked into the kernel before the
                           driver compiles it: faster to compile) | driver (the same image)
+  --cache-dir DIR|none    where compiled kernels are kept between runs (default $VKPATH_CACHE_DIR, else
+                          $XDG_CACHE_HOME/vkpath or ~/.cache/vkpath); none: no cache
   --device SEL            device index or name substring (default: the most capable); render: 'all' or
                           a list (0,1) splits the samples over several devices and merges them
   --validate              enable VK_LAYER_KHRONOS_validation; any message is an error
@@ -238,6 +240,9 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
                 const std::string v = value(f);
                 if (v == "driver") a.render.specializeOnHost = false;
                 else if (v != "host") usage("--specialize must be host or driver, got '" + v + "'");
+            } else if (f == "--cache-dir") {
+                const std::string v = fileValue(f);
+                a.cacheDir = v == "none" ? std::filesystem::path() : std::filesystem::path(v);
             } else if (f == "--exposure") a.session.exposure = parseDouble(f, value(f), -64, 64);
             else if (f == "--dump-every") a.session.dumpEvery = parseUint(f, value(f), 1, 1u << 24);
             else if (f == "--dump-dir") a.session.dumpDir = value(f);

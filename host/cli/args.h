@@ -52,6 +52,9 @@ struct CliArgs {
     std::vector<std::filesystem::path> parts;
     /// `--denoise`: write a denoised image beside the raw one (render/denoiser.h).
     bool denoise = false;
+    /// `--cache-dir DIR`: the kernel cache's folder (core/disk_cache.h); an empty path: `--cache-dir
+    /// none`, no cache; unset: defaultCacheDir() ($VKPATH_CACHE_DIR, $XDG_CACHE_HOME, $HOME).
+    std::optional<std::filesystem::path> cacheDir;
 };
 
 /// Parses argv. Throws InputError("usage: ...") with one line on any bad flag or value.

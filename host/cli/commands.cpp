@@ -201,6 +201,8 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     t = Clock::now();
     VulkanInstance instance(a.validate);
     VulkanDevice device(instance, a.device);
+    const std::shared_ptr<DiskCache> kernelCache = openKernelCache(a);
+    device.useKernelCache(kernelCache);
     const double secondsSetup = since(t);
     // --denoise: the denoiser's pipelines once, used at the end (and at dumps or log rows).
     std::unique_ptr<Denoiser> denoiser;
@@ -269,6 +271,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     if (!job.session.checkpoint.empty())
         std::fprintf(stderr, "vkpath: wrote %s (checkpoint at sample %u)\n", job.session.checkpoint.string().c_str(), r.spp);
     if (log) std::fprintf(stderr, "vkpath: wrote %s (%zu rows)\n", a.errorLog.string().c_str(), log->rows());
+    reportKernelCache(a, kernelCache.get());
 
     if (!a.statsJson.empty()) {
         RunStats st = runStats(job, renderer.features(), r);
@@ -281,6 +284,10 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
         st.hugePages = hugePagesRequested();
         st.spatialSplits = job.bvh.spatialSplits > 0.0f;
+        if (kernelCache) {
+            st.kernelCache = kernelCacheStats(*kernelCache);
+            st.kernelCache->pipelineCacheBytesLoaded = device.pipelineCacheBytesLoaded();
+        }
         st.bvhPrimitives = bvh.prims.size();
         const DeviceInfo& d = device.info();
         st.deviceName = d.name;

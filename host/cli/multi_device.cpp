@@ -61,8 +61,10 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     }
     std::vector<std::unique_ptr<VulkanDevice>> devices;
     std::vector<std::unique_ptr<Renderer>> renderers;
+    const std::shared_ptr<DiskCache> kernelCache = openKernelCache(a);
     for (const std::string& n : names) {
         devices.push_back(std::make_unique<VulkanDevice>(instance, n));
+        devices.back()->useKernelCache(kernelCache);
         renderers.push_back(std::make_unique<Renderer>(*devices.back(), arrays, job.options));
     }
     // --denoise: on the first device, once the samples are merged.
@@ -154,6 +156,7 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
         for (const auto& out : o.outputs) std::fprintf(stderr, "vkpath: wrote %s\n", out.string().c_str());
         if (!o.partial.empty()) std::fprintf(stderr, "vkpath: wrote %s\n", o.partial.string().c_str());
     }
+    reportKernelCache(a, kernelCache.get());
     return signal ? exitCodeForSignal(signal) : kExitOk;
 }
 

@@ -3,23 +3,12 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/fnv1a.h"
 #include "pathtrace.spv.h"
 
 namespace vkp {
 
 namespace {
-/// FNV-1a, 64 bit (Fowler, Noll, Vo): a fingerprint, not a cryptographic hash.
-struct Fnv1a {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    void add(std::span<const std::byte> bytes) {
-        for (std::byte b : bytes) {
-            h ^= std::uint64_t(b);
-            h *= 0x100000001b3ull;
-        }
-    }
-    void add(std::uint64_t v) { add(std::as_bytes(std::span<const std::uint64_t>(&v, 1))); }
-};
-
 std::string number(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.9g", v);

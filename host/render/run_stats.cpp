@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/disk_cache.h"
 #include "render/features.h"
 #include "render/render_job.h"
 
@@ -66,6 +67,16 @@ std::string jsonString(const std::string& s) {
         } else r += char(c);
     }
     return r + "\"";
+}
+
+RunStats::KernelCache kernelCacheStats(const DiskCache& cache) {
+    RunStats::KernelCache k;
+    k.dir = cache.dir().string();
+    k.hits = cache.counts().hits;
+    k.misses = cache.counts().misses;
+    k.stores = cache.counts().stores;
+    k.failedStores = cache.counts().failedStores;
+    return k;
 }
 
 RunStats runStats(const RenderJob& job, const Features& kernel, const SessionResult& r) {
@@ -166,6 +177,20 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("spatial_splits", s.spatialSplits ? "true" : "false");
     w.raw("bvh_primitives", num(s.bvhPrimitives));
     w.raw("scene_buffer_bytes", num(s.sceneBufferBytes));
+    if (s.kernelCache) {
+        std::ostringstream c;
+        ObjectWriter cw(c, 2);
+        cw.str("dir", s.kernelCache->dir);
+        cw.raw("hits", num(s.kernelCache->hits));
+        cw.raw("misses", num(s.kernelCache->misses));
+        cw.raw("stores", num(s.kernelCache->stores));
+        cw.raw("failed_stores", num(s.kernelCache->failedStores));
+        cw.raw("pipeline_cache_bytes_loaded", num(s.kernelCache->pipelineCacheBytesLoaded));
+        cw.close();
+        w.raw("kernel_cache", c.str());
+    } else {
+        w.raw("kernel_cache", "null");
+    }
     w.raw("samples_per_second", num(rate(samples, s.secondsRender)));
     w.raw("rays_per_second", num(rate(double(s.rays), s.secondsRender)));
     w.raw("samples_per_second_steady", num(rate(steadySamples, steadySeconds)));

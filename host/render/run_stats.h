@@ -54,6 +54,13 @@ struct RunStats {
     bool spatialSplits = false;          ///< built with spatial splits (--spatial-splits, host/bvh/sbvh.h)
     std::uint64_t bvhPrimitives = 0;     ///< primitives on the device: one per reference (instances included)
     std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
+    /// The kernel cache (core/disk_cache.h), if the render used one: its folder and what it did.
+    struct KernelCache {
+        std::string dir;
+        std::uint64_t hits = 0, misses = 0, stores = 0, failedStores = 0;
+        std::uint64_t pipelineCacheBytesLoaded = 0;  ///< VulkanDevice::pipelineCacheBytesLoaded
+    };
+    std::optional<KernelCache> kernelCache;
     // The device.
     std::string deviceName, deviceType, driverName, driverInfo, vulkanVersion;
     std::uint32_t subgroupSize = 0;  ///< the device's subgroup lanes (0: not reported)
@@ -75,6 +82,10 @@ struct RunStats {
 
 struct Features;
 struct RenderJob;
+class DiskCache;
+
+/// RunStats::kernelCache of `cache`.
+RunStats::KernelCache kernelCacheStats(const DiskCache& cache);
 struct SessionResult;
 
 /// The stats of a finished render: what `job` asked for and what the session did (`kernel`: the

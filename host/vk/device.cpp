@@ -1,7 +1,12 @@
 #include "vk/device.h"
 
+#include <cstring>
+
+#include "core/disk_cache.h"
 #include "core/errors.h"
+#include "core/fnv1a.h"
 #include "vk/compute_pipeline.h"
+#include "vk/pipeline_cache_data.h"
 
 namespace vkp {
 
@@ -38,6 +43,56 @@ VulkanDevice::VulkanDevice(VulkanInstance& instance, const std::string& selector
     cmd_ = std::move(vk::raii::CommandBuffers(device_, ai).front());
     fence_ = vk::raii::Fence(device_, vk::FenceCreateInfo{});
     compiled_ = std::make_shared<CompiledPipelines>();
+}
+
+namespace {
+PipelineCacheIdentity identityOf(const vk::PhysicalDeviceProperties& p) {
+    PipelineCacheIdentity id;
+    id.vendorId = p.vendorID;
+    id.deviceId = p.deviceID;
+    id.driverVersion = p.driverVersion;
+    std::memcpy(id.uuid, p.pipelineCacheUUID.data(), 16);
+    return id;
+}
+}  // namespace
+
+void VulkanDevice::useKernelCache(std::shared_ptr<DiskCache> cache) {
+    kernelCache_ = std::move(cache);
+    pipelineCache_ = vk::raii::PipelineCache(nullptr);
+    pipelineCacheHash_ = 0;
+    pipelineCacheBytesLoaded_ = 0;
+    if (!kernelCache_) return;
+    const PipelineCacheIdentity id = identityOf(physical_->getProperties());
+    std::optional<std::string> data = kernelCache_->load("pipelines", pipelineCacheKey(id));
+    if (data) {
+        const auto bytes = std::as_bytes(std::span<const char>(data->data(), data->size()));
+        if (pipelineCacheDataFits(bytes, id)) {
+            vk::PipelineCacheCreateInfo ci{};
+            ci.initialDataSize = data->size();
+            ci.pInitialData = data->data();
+            try {
+                pipelineCache_ = vk::raii::PipelineCache(device_, ci);
+                pipelineCacheHash_ = fnv1a(bytes);
+                pipelineCacheBytesLoaded_ = data->size();
+                return;
+            } catch (const vk::SystemError&) {
+                // the driver refused the data: start empty
+            }
+        }
+    }
+    pipelineCache_ = vk::raii::PipelineCache(device_, vk::PipelineCacheCreateInfo{});
+}
+
+void VulkanDevice::savePipelineCache() {
+    if (!kernelCache_ || !*pipelineCache_) return;
+    const std::vector<std::uint8_t> data = pipelineCache_.getData();
+    const auto bytes = std::as_bytes(std::span<const std::uint8_t>(data));
+    if (!pipelineCacheDataHasPipelines(bytes)) return;
+    const std::uint64_t h = fnv1a(bytes);
+    if (h == pipelineCacheHash_) return;
+    if (kernelCache_->store("pipelines", pipelineCacheKey(identityOf(physical_->getProperties())),
+                            std::string_view(reinterpret_cast<const char*>(data.data()), data.size())))
+        pipelineCacheHash_ = h;
 }
 
 void VulkanDevice::submitAndWait(const std::function<void(vk::raii::CommandBuffer&)>& record) {

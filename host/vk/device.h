@@ -9,6 +9,7 @@
 namespace vkp {
 
 struct CompiledPipelines;  // vk/compute_pipeline.h
+class DiskCache;           // core/disk_cache.h
 
 class VulkanDevice {
 public:
@@ -34,6 +35,23 @@ public:
     /// bindings and push-constant size as an earlier one reuses its VkPipeline.
     CompiledPipelines& compiledPipelines() { return *compiled_; }
 
+    /// Keeps compiled kernels in `cache` across processes (docs/design.md "The kernel cache"):
+    /// ComputePipeline looks up and stores its specialized SPIR-V there, and the device's
+    /// VkPipelineCache starts from the data stored for this device and driver (when it fits them:
+    /// vk/pipeline_cache_data.h). Call before creating pipelines. Never throws for the cache's
+    /// sake: data that does not fit or that the driver refuses leaves an empty pipeline cache.
+    void useKernelCache(std::shared_ptr<DiskCache> cache);
+    /// The cache of useKernelCache, or nullptr.
+    DiskCache* kernelCache() { return kernelCache_.get(); }
+    /// The VkPipelineCache every pipeline of this device is created with (a null handle without a
+    /// kernel cache).
+    const vk::raii::PipelineCache& pipelineCache() const { return pipelineCache_; }
+    /// Stores the VkPipelineCache's data in the kernel cache if the driver keeps anything in it
+    /// and it changed since it was loaded or last stored. Call after compiling pipelines.
+    void savePipelineCache();
+    /// Bytes of stored VkPipelineCache data the driver accepted at useKernelCache (0: none).
+    std::uint64_t pipelineCacheBytesLoaded() const { return pipelineCacheBytesLoaded_; }
+
 private:
     VulkanInstance* instance_;
     vk::raii::PhysicalDevice* physical_;
@@ -45,6 +63,10 @@ private:
     vk::raii::Fence fence_{nullptr};
     vk::PhysicalDeviceMemoryProperties memProps_{};
     std::shared_ptr<CompiledPipelines> compiled_;  // declared after device_: destroyed before it
+    std::shared_ptr<DiskCache> kernelCache_;
+    vk::raii::PipelineCache pipelineCache_{nullptr};  // after device_: destroyed before it
+    std::uint64_t pipelineCacheBytesLoaded_ = 0;
+    std::uint64_t pipelineCacheHash_ = 0;  ///< FNV-1a of the data last loaded or stored (0: none)
 };
 
 }  // namespace vkp

@@ -6,7 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <spirv-tools/libspirv.h>
 #include <spirv-tools/optimizer.hpp>
+
+#include "core/fnv1a.h"
 
 namespace vkp {
 
@@ -19,6 +22,9 @@ constexpr std::uint32_t kOpConstantTrue = 41, kOpConstantFalse = 42, kOpConstant
 constexpr std::uint32_t kOpSpecConstantTrue = 48, kOpSpecConstantFalse = 49, kOpSpecConstant = 50;
 constexpr std::uint32_t kOpSpecConstantComposite = 51;
 constexpr std::uint32_t kOpDecorate = 71, kOpExecutionModeId = 331;
+// What specializeSpirv makes of its input. Raise it with every change to bake() or to the passes
+// below: the kernel cache keys its entries with it (specializationKey).
+constexpr std::uint64_t kSpecializerRevision = 1;
 constexpr std::uint32_t kDecorationSpecId = 1, kDecorationBuiltIn = 11, kBuiltInWorkgroupSize = 25;
 
 struct Instruction {
@@ -120,6 +126,18 @@ SpirvSpecialization specializeSpirv(std::span<const std::uint32_t> spirv, std::s
         throw std::runtime_error("specializeSpirv: SPIRV-Tools failed" + (messages.empty() ? std::string() : ": " + messages));
     s.words = std::move(optimized);
     return s;
+}
+
+std::uint64_t specializationKey(std::span<const std::uint32_t> spirv, std::span<const std::uint32_t> values) {
+    Fnv1a h;
+    h.add(std::string_view("specializeSpirv"));
+    h.add(kSpecializerRevision);
+    h.add(std::string_view(spvSoftwareVersionDetailsString()));
+    h.add(std::uint64_t(spirv.size()));
+    h.add(std::as_bytes(spirv));
+    h.add(std::uint64_t(values.size()));
+    h.add(std::as_bytes(values));
+    return h.h;
 }
 
 }  // namespace vkp

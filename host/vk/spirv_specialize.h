@@ -30,4 +30,9 @@ struct SpirvSpecialization {
 /// Throws std::runtime_error if `spirv` is not a SPIR-V module or SPIRV-Tools refuses it.
 SpirvSpecialization specializeSpirv(std::span<const std::uint32_t> spirv, std::span<const std::uint32_t> values);
 
+/// The kernel cache's key of specializeSpirv(spirv, values).words (vk/compute_pipeline.cpp): an
+/// FNV-1a hash of the module, the values, this specializer's revision and SPIRV-Tools' version, so
+/// that a change of any of them misses the cache.
+std::uint64_t specializationKey(std::span<const std::uint32_t> spirv, std::span<const std::uint32_t> values);
+
 }  // namespace vkp

@@ -2,20 +2,24 @@
 // and the exit code for a device that does not exist. Validation layer on (--validate).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "core/disk_cache.h"
 #include "core/image_io.h"
 #include "gpu_env.h"
 #include "render/gpu_arrays.h"
 #include "render/workgroup.h"
+#include "vk/pipeline_cache_data.h"
 #include "image_checks.h"
 #include "run_process.h"
 #include "test_paths.h"
@@ -294,6 +298,123 @@ TEST_F(CliRender, OverflowingSamplesAreDroppedAndCounted) {
     EXPECT_GT(worst, 0.0f);  // the rest of the floor is lit
     EXPECT_EQ(r.err.find(" 0 non-finite samples dropped"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("pixels of the image are not finite"), std::string::npos) << r.err;
+}
+
+// The kernel cache (core/disk_cache.h, docs/design.md "The kernel cache"): the first render
+// stores the specialized kernel, the second loads it; a damaged entry, a FIFO in its place or an
+// entry of pipeline-cache data handed back to the driver change nothing in the image (bit for
+// bit) and fail nothing; --cache-dir none and VKPATH_CACHE_DIR choose the folder.
+TEST_F(CliRender, KernelCacheHitsOnTheSecondRunAndDamageChangesNothing) {
+    VKP_REQUIRE_DEVICE(dev);
+    namespace fs = std::filesystem;
+    const fs::path cache = dir / "kcache";
+    fs::remove_all(cache);
+    struct Run {
+        ProcessResult r;
+        nlohmann::json stats;
+        std::vector<float> rgb;
+    };
+    auto render = [&](const std::string& name, const std::vector<std::string>& extra, const std::string& env = "") {
+        std::vector<std::string> args = {"render", scene("cornell-book3.json"), "--validate", "--spp", "4", "--width", "24",
+                                         "--height", "16", "-o", name + ".pfm", "--stats-json", name + ".json"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        Run out;
+        out.r = runProcess(vkpathBinary(), args, dir, env);
+        if (out.r.exitCode != 0) return out;
+        std::ifstream f(dir / (name + ".json"));
+        out.stats = nlohmann::json::parse(f);
+        out.rgb = readImage(dir / (name + ".pfm")).rgb;
+        return out;
+    };
+    auto spirvEntries = [&] {
+        std::vector<fs::path> v;
+        if (fs::exists(cache))
+            for (const auto& e : fs::directory_iterator(cache))
+                if (e.path().filename().string().rfind("spirv-", 0) == 0) v.push_back(e.path());
+        return v;
+    };
+
+    const Run first = render("first", {"--cache-dir", "kcache", "--quiet"});
+    ASSERT_EQ(first.r.exitCode, 0) << first.r.err;
+    const nlohmann::json& k1 = first.stats["kernel_cache"];
+    EXPECT_EQ(k1["dir"], "kcache");
+    EXPECT_EQ(k1["hits"], 0);
+    EXPECT_GE(k1["stores"].get<int>(), 1) << k1;
+    EXPECT_EQ(k1["failed_stores"], 0);
+    const std::vector<fs::path> entries = spirvEntries();
+    ASSERT_EQ(entries.size(), 1u);  // one variant: one specialized kernel
+
+    const Run second = render("second", {"--cache-dir", "kcache", "--quiet"});
+    ASSERT_EQ(second.r.exitCode, 0) << second.r.err;
+    EXPECT_GE(second.stats["kernel_cache"]["hits"].get<int>(), 1) << second.stats["kernel_cache"];
+    EXPECT_EQ(second.stats["kernel_cache"]["stores"], 0) << second.stats["kernel_cache"];
+    EXPECT_EQ(second.rgb, first.rgb);
+
+    // A flipped byte in the stored kernel: a miss, compiled again, stored again, the same image.
+    {
+        std::fstream f(entries[0], std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(-1, std::ios::end);
+        char c = 0;
+        f.read(&c, 1);
+        f.seekp(-1, std::ios::end);
+        c = char(c ^ 0x40);
+        f.write(&c, 1);
+    }
+    const Run damaged = render("damaged", {"--cache-dir", "kcache", "--quiet"});
+    ASSERT_EQ(damaged.r.exitCode, 0) << damaged.r.err;
+    EXPECT_EQ(damaged.stats["kernel_cache"]["hits"], 0) << damaged.stats["kernel_cache"];
+    EXPECT_GE(damaged.stats["kernel_cache"]["stores"].get<int>(), 1) << damaged.stats["kernel_cache"];
+    EXPECT_EQ(damaged.rgb, first.rgb);
+    EXPECT_GE(render("mended", {"--cache-dir", "kcache", "--quiet"}).stats["kernel_cache"]["hits"].get<int>(), 1);
+
+    // A FIFO where the entry was: no hang, the same image, and (without --quiet, the folder chosen)
+    // one warning that the entry could not be written.
+    fs::remove(entries[0]);
+    ASSERT_EQ(::mkfifo(entries[0].c_str(), 0600), 0);
+    const Run fifo = render("fifo", {"--cache-dir", "kcache"});
+    ASSERT_EQ(fifo.r.exitCode, 0) << fifo.r.err;
+    EXPECT_EQ(fifo.rgb, first.rgb);
+    EXPECT_EQ(fifo.stats["kernel_cache"]["failed_stores"], 1) << fifo.stats["kernel_cache"];
+    EXPECT_NE(fifo.r.err.find("vkpath: warning: the kernel cache could not be written: "), std::string::npos) << fifo.r.err;
+    fs::remove(entries[0]);
+
+    // Pipeline-cache data of this device and driver (a valid header, a payload no driver wrote) is
+    // handed to vkCreatePipelineCache, under the validation layer; the image is the same.
+    const vk::PhysicalDeviceProperties props = dev.physical().getProperties();
+    PipelineCacheIdentity id;
+    id.vendorId = props.vendorID;
+    id.deviceId = props.deviceID;
+    id.driverVersion = props.driverVersion;
+    std::memcpy(id.uuid, props.pipelineCacheUUID.data(), 16);
+    std::string data(32 + 64, '\x5a');
+    const std::uint32_t head[4] = {32u, 1u, props.vendorID, props.deviceID};
+    std::memcpy(data.data(), head, 16);
+    std::memcpy(data.data() + 16, id.uuid, 16);
+    ASSERT_TRUE(DiskCache(cache).store("pipelines", pipelineCacheKey(id), data));
+    const Run handed = render("handed", {"--cache-dir", "kcache", "--quiet"});
+    ASSERT_EQ(handed.r.exitCode, 0) << handed.r.err;
+    EXPECT_EQ(handed.stats["kernel_cache"]["pipeline_cache_bytes_loaded"], data.size()) << handed.stats["kernel_cache"];
+    EXPECT_EQ(handed.rgb, first.rgb);
+    // Data whose header names another pipelineCacheUUID (another driver build), stored under this
+    // device's key: not handed over.
+    data[16] = char(data[16] ^ 1);
+    fs::remove_all(cache);
+    ASSERT_TRUE(DiskCache(cache).store("pipelines", pipelineCacheKey(id), data));
+    const Run foreign = render("foreign", {"--cache-dir", "kcache", "--quiet"});
+    ASSERT_EQ(foreign.r.exitCode, 0) << foreign.r.err;
+    EXPECT_EQ(foreign.stats["kernel_cache"]["pipeline_cache_bytes_loaded"], 0) << foreign.stats["kernel_cache"];
+
+    // --cache-dir none: no cache; VKPATH_CACHE_DIR: the folder when no --cache-dir is given.
+    fs::remove_all(cache);
+    const Run none = render("none", {"--cache-dir", "none", "--quiet"}, "VKPATH_CACHE_DIR=kcache");
+    ASSERT_EQ(none.r.exitCode, 0) << none.r.err;
+    EXPECT_TRUE(none.stats["kernel_cache"].is_null());
+    EXPECT_FALSE(fs::exists(cache));
+    EXPECT_EQ(none.rgb, first.rgb);
+    const Run fromEnv = render("env", {"--quiet"}, "VKPATH_CACHE_DIR=kcache");
+    ASSERT_EQ(fromEnv.r.exitCode, 0) << fromEnv.r.err;
+    EXPECT_EQ(fromEnv.stats["kernel_cache"]["dir"], "kcache");
+    EXPECT_EQ(spirvEntries().size(), 1u);
 }
 
 }  // namespace

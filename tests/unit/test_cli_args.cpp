@@ -185,6 +185,16 @@ TEST(CliArgs, SpatialSplitsOffByDefaultForRenderAndInfoNotMerge) {
     EXPECT_NE(errorOf({"merge", "a.exr", "-o", "x.png", "--spatial-splits"}).find("vkpath merge takes"), std::string::npos);
 }
 
+TEST(CliArgs, CacheDirIsARenderOptionNoneTurnsTheCacheOff) {
+    EXPECT_FALSE(parse({"render", "s.json"}).cacheDir);  // the default folder (core/disk_cache.h)
+    EXPECT_EQ(parse({"render", "s.json", "--cache-dir", "/tmp/k"}).cacheDir, std::filesystem::path("/tmp/k"));
+    EXPECT_EQ(parse({"render", "s.json", "--cache-dir", "none"}).cacheDir, std::filesystem::path());
+    EXPECT_EQ(parse({"render", "s.json", "--cache-dir", "./none"}).cacheDir, std::filesystem::path("./none"));
+    EXPECT_EQ(errorOf({"render", "s.json", "--cache-dir", ""}), "usage: --cache-dir needs a file name (see 'vkpath --help')");
+    EXPECT_NE(errorOf({"info", "s.json", "--cache-dir", "k"}).find("only valid with 'vkpath render'"), std::string::npos);
+    EXPECT_NE(errorOf({"merge", "a.exr", "-o", "x.png", "--cache-dir", "k"}).find("vkpath merge takes"), std::string::npos);
+}
+
 TEST(CliArgs, InstancingAutoByDefaultFlattenOnRequestAlsoForInfo) {
     EXPECT_TRUE(parse({"render", "s.glb"}).instancing);
     EXPECT_FALSE(parse({"render", "s.glb", "--instancing", "flatten"}).instancing);

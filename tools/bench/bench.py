@@ -360,7 +360,7 @@ def bench_scene(vk, name, scene, size, cfg, args, env, workdir, failures):
     cold_dir = os.path.join(runs, "cold-shader-cache")
     shutil.rmtree(cold_dir, ignore_errors=True)
     os.makedirs(cold_dir)
-    cold_env = dict(env, MESA_SHADER_CACHE_DIR=cold_dir)
+    cold_env = dict(env, MESA_SHADER_CACHE_DIR=cold_dir, VKPATH_CACHE_DIR=os.path.join(cold_dir, "vkpath"))
     cold = vk.render(scene, runs, "ttfp-cold", wh + ["--spp", 1, "-o", "ttfp.pfm"], cold_env)
     warm = vk.render(scene, runs, "ttfp-warm", wh + ["--spp", 1, "-o", "ttfp.pfm"], cold_env)
     res["ttfp"] = {"cold": cold["seconds_to_first_sample"], "cold_jit": cold["seconds_first_batch"],
@@ -541,8 +541,10 @@ def main():
     load_before = load_average()
     log("bench: %s mode, vkpath %s, samplers %s (reference: %s), results in %s" %
         (mode, vk.version, ", ".join(vk.samplers), vk.default_sampler, args.out))
-    # Every run: the warm shader cache of the cache folder, lavapipe's default thread count.
-    env = {"MESA_SHADER_CACHE_DIR": os.path.join(args.cache, "mesa-shader-cache"), "LP_NUM_THREADS": None}
+    # Every run: the warm shader caches of the cache folder (Mesa's and vkpath's kernel cache),
+    # lavapipe's default thread count.
+    env = {"MESA_SHADER_CACHE_DIR": os.path.join(args.cache, "mesa-shader-cache"),
+           "VKPATH_CACHE_DIR": os.path.join(args.cache, "vkpath-kernel-cache"), "LP_NUM_THREADS": None}
     workdir = os.path.join(args.out, "runs")
     failures, scenes, curves_by_scene, device = [], [], {}, {"name": "?", "driver_info": "?"}
     for name, path, full_size, quick_size in SCENES:

@@ -113,7 +113,7 @@ class Vkpath:
         cmd = [self.binary, "render", str(scene)] + [str(a) for a in args] + ["--quiet", "--stats-json", stats_path]
         full_env = environment_with(env)
         shown = " ".join("%s=%s" % kv for kv in (env or {}).items()
-                         if kv[1] is not None and kv[0] != "MESA_SHADER_CACHE_DIR")
+                         if kv[1] is not None and kv[0] not in ("MESA_SHADER_CACHE_DIR", "VKPATH_CACHE_DIR"))
         self.log("  %-14s %s%s" % (name, shown + " " if shown else "", " ".join(str(a) for a in args)))
         p = subprocess.run(cmd, capture_output=True, text=True, env=full_env, cwd=workdir, timeout=timeout)
         with open(os.path.join(workdir, name + ".stderr.txt"), "w") as f:
