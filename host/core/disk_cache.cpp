@@ -64,7 +64,7 @@ fs::path DiskCache::entryPath(std::string_view kind, std::uint64_t key) const {
 
 std::optional<std::string> DiskCache::load(std::string_view kind, std::uint64_t key) {
     auto miss = [&]() -> std::optional<std::string> {
-        ++counts_.misses;
+        count(&Counts::misses);
         return std::nullopt;
     };
     if (!validKind(kind)) return miss();
@@ -88,14 +88,13 @@ std::optional<std::string> DiskCache::load(std::string_view kind, std::uint64_t 
     std::string payload = bytes.substr(sizeof h);
     if (fnv1a(std::as_bytes(std::span<const char>(payload.data(), payload.size()))) != h.payloadHash) return miss();
     fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // recently used: pruned last (errors ignored)
-    ++counts_.hits;
+    count(&Counts::hits);
     return payload;
 }
 
 bool DiskCache::store(std::string_view kind, std::uint64_t key, std::string_view payload) {
     auto failed = [&](const std::string& why) {
-        ++counts_.failedStores;
-        lastProblem_ = why;
+        count(&Counts::failedStores, why);
         return false;
     };
     if (!validKind(kind)) return failed(std::string(kind) + ": not a cache entry kind");
@@ -119,9 +118,25 @@ bool DiskCache::store(std::string_view kind, std::uint64_t key, std::string_view
     } catch (const std::exception& e) {
         return failed(e.what());
     }
-    ++counts_.stores;
+    count(&Counts::stores);
     prune();
     return true;
+}
+
+void DiskCache::count(std::uint64_t Counts::*which, const std::string& problem) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++(counts_.*which);
+    if (!problem.empty()) lastProblem_ = problem;
+}
+
+DiskCache::Counts DiskCache::counts() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return counts_;
+}
+
+std::string DiskCache::lastProblem() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return lastProblem_;
 }
 
 void DiskCache::prune() {

@@ -9,10 +9,12 @@
 // sharing the folder (a render farm's nodes on one home directory) see whole entries or none.
 // The folder is bounded: after a store, the oldest entries (by modification time; a hit refreshes
 // it) beyond maxEntries or maxBytes are removed, and so are temporary files older than an hour
-// that a killed writer left. Only files named as this cache names them are ever removed.
+// that a killed writer left. Only files named as this cache names them are ever removed. One
+// DiskCache may serve several threads.
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,13 +46,15 @@ public:
     struct Counts {
         std::uint64_t hits = 0, misses = 0, stores = 0, failedStores = 0;
     };
-    const Counts& counts() const { return counts_; }
+    Counts counts() const;
     /// Why the last store failed ("" if none did): "<path>: <reason>".
-    const std::string& lastProblem() const { return lastProblem_; }
+    std::string lastProblem() const;
 
 private:
     void prune();
+    void count(std::uint64_t Counts::*which, const std::string& problem = {});
 
+    mutable std::mutex mutex_;  // counts_ and lastProblem_: devices on several threads may share a cache
     std::filesystem::path dir_;
     std::size_t maxEntries_;
     std::uint64_t maxBytes_;

@@ -72,10 +72,11 @@ std::string jsonString(const std::string& s) {
 RunStats::KernelCache kernelCacheStats(const DiskCache& cache) {
     RunStats::KernelCache k;
     k.dir = cache.dir().string();
-    k.hits = cache.counts().hits;
-    k.misses = cache.counts().misses;
-    k.stores = cache.counts().stores;
-    k.failedStores = cache.counts().failedStores;
+    const DiskCache::Counts c = cache.counts();
+    k.hits = c.hits;
+    k.misses = c.misses;
+    k.stores = c.stores;
+    k.failedStores = c.failedStores;
     return k;
 }
 

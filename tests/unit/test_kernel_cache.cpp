@@ -14,6 +14,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/disk_cache.h"
@@ -170,6 +171,28 @@ TEST(DiskCache, TheFolderIsBoundedAndOnlyItsOwnFilesAreRemoved) {
     EXPECT_LE(total, 1u << 20);
     EXPECT_TRUE(fs::exists(c.entryPath("big", 2)));  // the newest stays
     EXPECT_FALSE(fs::exists(c.entryPath("big", 1)));
+}
+
+TEST(DiskCache, ThreadsSharingOneCacheCountEveryLookup) {
+    const fs::path dir = freshDir("threads");
+    DiskCache c(dir, 1000);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&c, t] {
+            for (std::uint64_t i = 0; i < 50; ++i) {
+                const std::uint64_t key = i % 10;  // the threads write and read the same ten entries
+                c.store("spirv", key, "payload " + std::to_string(key));
+                const std::optional<std::string> got = c.load("spirv", key + 100 * std::uint64_t(t % 2));
+                if (got && *got != "payload " + std::to_string(key)) std::abort();  // a torn entry
+            }
+        });
+    for (auto& th : threads) th.join();
+    const DiskCache::Counts n = c.counts();
+    EXPECT_EQ(n.stores + n.failedStores, 200u);
+    EXPECT_EQ(n.failedStores, 0u) << c.lastProblem();
+    EXPECT_EQ(n.hits + n.misses, 200u);
+    EXPECT_EQ(n.hits, 100u);  // the even threads read the keys they wrote; the odd ones keys never written
+    for (std::uint64_t key = 0; key < 10; ++key) EXPECT_EQ(c.load("spirv", key), "payload " + std::to_string(key));
 }
 
 /// Sets (or unsets, for nullptr) the variables for the scope of one test.
