@@ -94,7 +94,7 @@ VKP_FN float sampleNext(INOUT(SampleStream) s) {
     if (VKP_SEQUENCE_SOBOL && s.vertex <= VKP_SOBOL_MAX_VERTEX && s.singles < 4u) {
         uint k = s.singles;
         s.singles += 1u;
-        return sobolSample(s.seed, s.index, 2u * s.vertex + (k & 1u), 2u + (k >> 1u));
+        return sobolSampleDim23(s.seed, s.index, 2u * s.vertex + (k & 1u), 2u + (k >> 1u));
     }
     return rngNext(s.rng);
 }

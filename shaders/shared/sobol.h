@@ -62,37 +62,55 @@ VKP_FN uint nestedUniformScramble(uint x, uint seed) {
     return sobolReverseBits(sobolLkHash(sobolReverseBits(x), seed));
 }
 
-/// The k-th direction number (k = 0..31) of Sobol' dimension dim (0..3) from the three before it
-/// (vk1 = v_{k-1}, vk2 = v_{k-2}, vk3 = v_{k-3}); the initial numbers come from m (file comment).
-VKP_FN uint sobolDirection(uint dim, uint k, uint vk1, uint vk2, uint vk3) {
-    if (dim == 0u) return 0x80000000u >> k;
-    if (dim == 1u) return (k == 0u) ? 0x80000000u : (vk1 ^ (vk1 >> 1u));
-    if (dim == 2u) {
-        if (k == 0u) return 0x80000000u;
-        if (k == 1u) return 0xc0000000u;
-        return vk1 ^ vk2 ^ (vk2 >> 2u);
+/// Sobol' dimension 1 (primitive polynomial x + 1) of point `index`, all 32 bits, in five steps
+/// instead of a product with 32 columns. Its direction numbers are the rows of Pascal's triangle
+/// mod 2: v_k has the bit p places below the top set iff C(k, p) is odd, i.e. iff p is a submask of
+/// k (Lucas' theorem). So output bit p (from the top) is the XOR of index bits k over every k that
+/// contains p: a superset-sum transform over the five bits of a bit position, one shift-and-mask
+/// step per bit s, on the reversed index (where index bit p sits p places below the top; a bit q
+/// of the word, q = 31 - p, lacks s in p exactly when q has it).
+VKP_FN uint sobolDim1Bits(uint index) {
+    uint x = sobolReverseBits(index);
+    x ^= (x << 1u) & 0xaaaaaaaau;
+    x ^= (x << 2u) & 0xccccccccu;
+    x ^= (x << 4u) & 0xf0f0f0f0u;
+    x ^= (x << 8u) & 0xff00ff00u;
+    x ^= (x << 16u) & 0xffff0000u;
+    return x;
+}
+/// Coordinate 2 or 3 of Sobol' point `index`: the product with the 32 columns of the generator
+/// matrix, built by the recurrences of the file comment with k a constant after unrolling, so that
+/// every column is a constant, and both dimensions share the masks of the index's bits (on
+/// lavapipe both sides of a choice run anyway, so a dimension chosen at run time costs one loop,
+/// not two loops and a recurrence per column).
+VKP_FN uint sobolDim23Bits(uint index, uint dim) {
+    uint x2 = 0u;
+    uint x3 = 0u;
+    uint a1 = 0u;  // dimension 2: v_{k-1}, v_{k-2}
+    uint a2 = 0u;
+    uint b1 = 0u;  // dimension 3: v_{k-1}, v_{k-2}, v_{k-3}
+    uint b2 = 0u;
+    uint b3 = 0u;
+    for (uint k = 0u; k < 32u; ++k) {  // a constant 32-trip loop: unrolled, free of lavapipe's limit
+        uint va = (k == 0u) ? 0x80000000u : (k == 1u) ? 0xc0000000u : (a1 ^ a2 ^ (a2 >> 2u));
+        uint vb = (k == 0u) ? 0x80000000u : (k == 1u) ? 0xc0000000u : (k == 2u) ? 0x20000000u : (b2 ^ b3 ^ (b3 >> 3u));
+        uint mask = 0u - ((index >> k) & 1u);
+        x2 ^= va & mask;
+        x3 ^= vb & mask;
+        a2 = a1;
+        a1 = va;
+        b3 = b2;
+        b2 = b1;
+        b1 = vb;
     }
-    if (k == 0u) return 0x80000000u;
-    if (k == 1u) return 0xc0000000u;
-    if (k == 2u) return 0x20000000u;
-    return vk2 ^ vk3 ^ (vk3 >> 3u);
+    return (dim == 2u) ? x2 : x3;
 }
 
-/// Coordinate dim (0..3) of Sobol' point `index`, as a 32-bit fraction (unscrambled).
+/// Coordinate dim (0..3) of Sobol' point `index`, as a 32-bit fraction (unscrambled), all 32 bits.
 VKP_FN uint sobolBits(uint index, uint dim) {
     if (dim == 0u) return sobolReverseBits(index);
-    uint x = 0u;
-    uint v1 = 0u;
-    uint v2 = 0u;
-    uint v3 = 0u;
-    for (uint k = 0u; k < 32u; ++k) {  // a constant 32-trip loop: unrolled, free of lavapipe's limit
-        uint v = sobolDirection(dim, k, v1, v2, v3);
-        x ^= v & (0u - ((index >> k) & 1u));
-        v3 = v2;
-        v2 = v1;
-        v1 = v;
-    }
-    return x;
+    if (dim == 1u) return sobolDim1Bits(index);
+    return sobolDim23Bits(index, dim);
 }
 
 /// A 32-bit fraction as a float in [0,1): its top 24 bits times 2^-24 (exact; 1.0 never occurs).
@@ -123,13 +141,20 @@ VKP_FN float sobolSample(uint pixelSeed, uint index, uint group, uint dim) {
     return sobolToFloat(sobolSampleBits(pixelSeed, index, group, dim));
 }
 
+/// sobolSample of dimension 2 or 3 (sample_stream.h's single numbers): the same float without the
+/// code of dimensions 0 and 1, which lavapipe would run as well.
+VKP_FN float sobolSampleDim23(uint pixelSeed, uint index, uint group, uint dim) {
+    uint gs = sobolGroupSeed(pixelSeed, group);
+    uint i = nestedUniformScramble(index, gs);
+    return sobolToFloat(nestedUniformScramble(sobolDim23Bits(i, dim), sobolScrambleSeed(gs, dim)));
+}
 /// Dimensions 0 and 1 of a group (a (0,2)-sequence before scrambling, so every prefix of 2^m
 /// samples has one point in each of the 2^m elementary intervals of any shape), one shuffle.
 VKP_FN vec2 sobolSample2(uint pixelSeed, uint index, uint group) {
     uint gs = sobolGroupSeed(pixelSeed, group);
     uint i = nestedUniformScramble(index, gs);
     float a = sobolToFloat(nestedUniformScramble(sobolReverseBits(i), sobolScrambleSeed(gs, 0u)));
-    float b = sobolToFloat(nestedUniformScramble(sobolBits(i, 1u), sobolScrambleSeed(gs, 1u)));
+    float b = sobolToFloat(nestedUniformScramble(sobolDim1Bits(i), sobolScrambleSeed(gs, 1u)));
     return vec2(a, b);
 }
 

@@ -3,6 +3,8 @@
 //
 // Deterministic properties (no false failures possible):
 //   - the generated direction numbers equal the table of Burley 2020's supplemental code;
+//   - the kernel's shortcuts (dimension 1 by a superset-sum transform, dimensions 2 and 3 with
+//     constant columns) equal the product with the generator matrix;
 //   - every 1D dimension (4 per group, groups 0..7: the first 32 dimensions) is a (0,1)-sequence
 //     after shuffling and scrambling: the first 2^m samples and every aligned run of 2^m samples
 //     put exactly one point in each interval [j 2^-m, (j+1) 2^-m), m = 0..12;
@@ -74,6 +76,52 @@ TEST(Sobol, DirectionNumbersMatchBurleysTable) {
     for (u32 d = 0; d < 4; ++d)
         for (u32 i : {3u, 0x1234u, 0xdeadbeefu})
             EXPECT_EQ(gpu::sobolBits(i, d), gpu::sobolBits(i & 0xffffu, d) ^ gpu::sobolBits(i & 0xffff0000u, d));
+}
+
+/// Sobol' coordinate `dim` of `index` by the textbook product: the XOR of the direction numbers
+/// v_k (the recurrences of sobol.h's file comment, computed here independently) of the index's set
+/// bits. The reference for the kernel's shortcuts (sobolDim1Bits, sobolDim23Bits).
+u32 sobolByColumns(u32 index, u32 dim) {
+    u32 v[32];
+    for (u32 k = 0; k < 32; ++k) {
+        if (dim == 0) v[k] = 0x80000000u >> k;
+        else if (dim == 1) v[k] = k == 0 ? 0x80000000u : v[k - 1] ^ (v[k - 1] >> 1);
+        else if (dim == 2) v[k] = k == 0 ? 0x80000000u : k == 1 ? 0xc0000000u : v[k - 1] ^ v[k - 2] ^ (v[k - 2] >> 2);
+        else v[k] = k == 0 ? 0x80000000u : k == 1 ? 0xc0000000u : k == 2 ? 0x20000000u : v[k - 2] ^ v[k - 3] ^ (v[k - 3] >> 3);
+    }
+    u32 x = 0;
+    for (u32 k = 0; k < 32; ++k)
+        if ((index >> k) & 1u) x ^= v[k];
+    return x;
+}
+
+// The kernel's shortcuts give the textbook points: dimension 1's five-step transform and the
+// constant-column products of dimensions 2 and 3, all 32 bits, and so every float sample.
+TEST(Sobol, ShortcutsEqualTheProductWithTheGeneratorMatrix) {
+    std::vector<u32> indices = {0u, 1u, 0xffffffffu, 0x80000000u, 0x00ffffffu, 0xff000000u};
+    for (u32 k = 0; k < 32; ++k) indices.push_back(1u << k);
+    u32 h = 12345u;
+    for (int n = 0; n < 20000; ++n) indices.push_back(h = gpu::pcgHash(h));
+    for (u32 i : indices) {
+        for (u32 d = 0; d < 4; ++d) {
+            ASSERT_EQ(gpu::sobolBits(i, d), sobolByColumns(i, d)) << "index " << i << " dim " << d;
+        }
+        ASSERT_EQ(gpu::sobolDim1Bits(i), sobolByColumns(i, 1)) << i;
+        for (u32 d = 2; d < 4; ++d) ASSERT_EQ(gpu::sobolDim23Bits(i, d), sobolByColumns(i, d)) << i << " dim " << d;
+    }
+    // Float samples: the same number through every entry point.
+    for (u32 ps : {0u, 7u, 0x9e3779b9u})
+        for (u32 index = 0; index < 2000; ++index)
+            for (u32 g : {0u, 1u, 9u}) {
+                for (u32 d = 0; d < 4; ++d) {
+                    const float exact = gpu::sobolToFloat(gpu::sobolSampleBits(ps, index, g, d));
+                    ASSERT_EQ(gpu::sobolSample(ps, index, g, d), exact) << ps << " " << index << " " << g << " " << d;
+                    if (d >= 2) ASSERT_EQ(gpu::sobolSampleDim23(ps, index, g, d), exact);
+                }
+                const gpu::vec2 pair = gpu::sobolSample2(ps, index, g);
+                ASSERT_EQ(pair.x, gpu::sobolToFloat(gpu::sobolSampleBits(ps, index, g, 0)));
+                ASSERT_EQ(pair.y, gpu::sobolToFloat(gpu::sobolSampleBits(ps, index, g, 1)));
+            }
 }
 
 TEST(Sobol, ReverseBitsAndScrambleAreBijectionsOfTheRightShape) {
