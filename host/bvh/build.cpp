@@ -208,7 +208,7 @@ private:
         nodes_->push_back(left);
         nodes_->push_back(right);
         Task rightTask{first + 1, mid, t.end, t.depth + 1, rcbox};
-        if (t.end - mid >= kForkMin && takeThread()) {
+        if (t.end - mid >= kForkMin && takeThread(freeThreads_)) {
             // The right subtree on another thread; the marker left in its place splices it in
             // once the left subtree is done, where the sequential build would have put its nodes.
             rightTask.fork = static_cast<int>(forks_.size());
@@ -221,13 +221,6 @@ private:
         }
         stack.push_back(rightTask);
         stack.push_back({first, t.begin, mid, t.depth + 1, lcbox});
-    }
-
-    bool takeThread() {
-        int n = freeThreads_.load();
-        while (n > 0)
-            if (freeThreads_.compare_exchange_weak(n, n - 1)) return true;
-        return false;
     }
 
     /// Appends the forked subtree of marker t after the nodes built so far; its root replaces node t.node.
@@ -386,6 +379,13 @@ private:
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
+
+bool takeThread(std::atomic<int>& freeThreads) {
+    int n = freeThreads.load();
+    while (n > 0)
+        if (freeThreads.compare_exchange_weak(n, n - 1)) return true;
+    return false;
+}
 
 std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize) {
     const std::size_t leaves = (n + leafSize - 1) / leafSize;

@@ -3,6 +3,7 @@
 // (that is flatten.h). References: Wald, "On fast Construction of SAH-based Bounding Volume
 // Hierarchies" (RT'07) for binning; MacDonald & Booth (1990) for the surface area heuristic.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -85,6 +86,10 @@ struct BvhBuildTree {
 /// Levels of balanced binary splits needed to bring n primitives (or references) down to leaves of
 /// at most leafSize (>= 1): the depth budget both builders keep (build.cpp, sbvh.cpp).
 std::uint32_t levelsNeeded(std::size_t n, std::uint32_t leafSize);
+
+/// Claims one of the threads counted in `freeThreads` for a forked subtree (both builders; the
+/// claimer adds it back when the subtree is built): false when none is free.
+bool takeThread(std::atomic<int>& freeThreads);
 
 /// Build a BVH over n primitives given by their boxes and centroids (equal sizes, finite, lo <= hi;
 /// otherwise std::invalid_argument). Iterative (no recursion), on options.threads threads, with the

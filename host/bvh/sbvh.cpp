@@ -150,13 +150,6 @@ public:
     }
 
 private:
-    bool takeThread() {
-        int n = freeThreads_.load();
-        while (n > 0)
-            if (freeThreads_.compare_exchange_weak(n, n - 1)) return true;
-        return false;
-    }
-
     /// Appends the forked subtree of marker t after the nodes and primitives built so far; its root
     /// replaces node t.node. The same nodes, in the same order, as a build on one thread.
     void splice(const Task& t, std::uint32_t& maxDepth) {
@@ -228,7 +221,7 @@ private:
         nodes_->push_back(r);
         // Right pushed first: the left subtree is built (and its leaves numbered) first.
         Task rightTask{first + 1, t.depth + 1, std::move(right), rest - leftExtra};
-        if (rightTask.refs.size() >= kForkMin && takeThread()) {
+        if (rightTask.refs.size() >= kForkMin && takeThread(freeThreads_)) {
             // The right subtree on another thread; the marker left in its place splices it in once
             // the left subtree is done, where the sequential build would have put it.
             const int fork = static_cast<int>(forks_.size());

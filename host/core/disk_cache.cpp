@@ -69,11 +69,9 @@ std::optional<std::string> DiskCache::load(std::string_view kind, std::uint64_t 
     };
     if (!validKind(kind)) return miss();
     const fs::path path = entryPath(kind, key);
-    std::error_code ec;
-    if (!fs::exists(path, ec)) return miss();
     std::string bytes;
     try {
-        bytes = readInputFile(path, sizeof(EntryHeader) + kMaxPayloadBytes);  // refuses FIFOs, devices, huge files
+        bytes = readInputFile(path, sizeof(EntryHeader) + kMaxPayloadBytes);  // absent, FIFO, device, huge: throws
     } catch (const std::exception&) {
         return miss();
     }
@@ -87,6 +85,7 @@ std::optional<std::string> DiskCache::load(std::string_view kind, std::uint64_t 
         return miss();
     std::string payload = bytes.substr(sizeof h);
     if (fnv1a(std::as_bytes(std::span<const char>(payload.data(), payload.size()))) != h.payloadHash) return miss();
+    std::error_code ec;
     fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // recently used: pruned last (errors ignored)
     count(&Counts::hits);
     return payload;
@@ -172,19 +171,14 @@ void DiskCache::prune() {
 }
 
 fs::path defaultCacheDir() {
-    auto env = [](const char* name) -> std::string {
+    auto env = [](const char* name) -> std::optional<std::string> {
         const char* v = std::getenv(name);
-        return v ? std::string(v) : std::string();
+        return v ? std::optional<std::string>(v) : std::nullopt;
     };
-    if (const char* v = std::getenv("VKPATH_CACHE_DIR")) {
-        const std::string s = v;
-        if (s == "none" || s.empty()) return {};
-        return fs::path(s);
-    }
-    const std::string xdg = env("XDG_CACHE_HOME");
-    if (!xdg.empty() && fs::path(xdg).is_absolute()) return fs::path(xdg) / "vkpath";
-    const std::string home = env("HOME");
-    if (!home.empty() && fs::path(home).is_absolute()) return fs::path(home) / ".cache" / "vkpath";
+    if (const auto v = env("VKPATH_CACHE_DIR")) return (v->empty() || *v == "none") ? fs::path() : fs::path(*v);
+    // XDG Base Directory Specification: relative paths are invalid and ignored.
+    if (const auto xdg = env("XDG_CACHE_HOME"); xdg && fs::path(*xdg).is_absolute()) return fs::path(*xdg) / "vkpath";
+    if (const auto home = env("HOME"); home && fs::path(*home).is_absolute()) return fs::path(*home) / ".cache" / "vkpath";
     return {};
 }
 

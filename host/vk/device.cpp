@@ -63,7 +63,8 @@ void VulkanDevice::useKernelCache(std::shared_ptr<DiskCache> cache) {
     pipelineCacheBytesLoaded_ = 0;
     if (!kernelCache_) return;
     const PipelineCacheIdentity id = identityOf(physical_->getProperties());
-    std::optional<std::string> data = kernelCache_->load("pipelines", pipelineCacheKey(id));
+    pipelineCacheKey_ = pipelineCacheKey(id);
+    std::optional<std::string> data = kernelCache_->load("pipelines", pipelineCacheKey_);
     if (data) {
         const auto bytes = std::as_bytes(std::span<const char>(data->data(), data->size()));
         if (pipelineCacheDataFits(bytes, id)) {
@@ -90,8 +91,7 @@ void VulkanDevice::savePipelineCache() {
     if (!pipelineCacheDataHasPipelines(bytes)) return;
     const std::uint64_t h = fnv1a(bytes);
     if (h == pipelineCacheHash_) return;
-    if (kernelCache_->store("pipelines", pipelineCacheKey(identityOf(physical_->getProperties())),
-                            std::string_view(reinterpret_cast<const char*>(data.data()), data.size())))
+    if (kernelCache_->store("pipelines", pipelineCacheKey_, std::string_view(reinterpret_cast<const char*>(data.data()), data.size())))
         pipelineCacheHash_ = h;
 }
 

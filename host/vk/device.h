@@ -65,6 +65,7 @@ private:
     std::shared_ptr<CompiledPipelines> compiled_;  // declared after device_: destroyed before it
     std::shared_ptr<DiskCache> kernelCache_;
     vk::raii::PipelineCache pipelineCache_{nullptr};  // after device_: destroyed before it
+    std::uint64_t pipelineCacheKey_ = 0;  ///< the kernel cache's key of this device's entry (pipelineCacheKey)
     std::uint64_t pipelineCacheBytesLoaded_ = 0;
     std::uint64_t pipelineCacheHash_ = 0;  ///< FNV-1a of the data last loaded or stored (0: none)
 };
