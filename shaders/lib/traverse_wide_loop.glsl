@@ -5,6 +5,73 @@
 // parameters) and updates t, primIndex, abHit, inst on a hit. See lib/traverse_wide.glsl for the
 // algorithm and the pass counting; the CPU twin is host/bvh/traverse_wide_cpu.cpp (loop()).
 
+#ifdef VKP_WIDE_POSTPONE
+// Bench variant (tests/bench/bench_bvh_layout.cpp, "wide4 postponed leaves"): a leaf is a stack
+// entry like an inner node, and each step does one unit of work, a node's four boxes or one
+// primitive of the current leaf, so that lanes of a SIMD batch doing different work run one node
+// and one primitive per step rather than a node and the busiest lane's whole leaf list (the if-if
+// order of Aila and Laine 2009). A leaf entry is 0x80000000 | count << 27 | first primitive
+// (count < 16, first < 2^27: enough for the bench's scenes).
+bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
+                      inout vec2 abHit, inout uint inst, uint instId, inout uint passes) {
+    vec3 invD = safeInverse(d);
+    uint stack[VKP_WIDE_STACK];
+    uint sp = 0u;
+    uint node = root;
+    uint leafFirst = 0u;
+    uint leafLeft = 0u;
+    bool finished = false;
+    bool overflow = false;
+    bool found = false;
+    while (passes < uint(VKP_MAX_PASSES)) {
+        uint next = 0xffffffffu;
+        if (leafLeft > 0u) {
+            passes += 1u;
+            uint p = leafFirst;
+            leafFirst += 1u;
+            leafLeft -= 1u;
+            if (VKP_WIDE_LEAF(p)) {
+                found = true;
+                if (anyHit) {
+                    finished = true;
+                    break;
+                }
+            }
+            if (leafLeft > 0u) continue;
+        } else {
+            passes += 2u;
+            GpuWideNode n = fetchWideNode(node);
+            vec4 key = vkpWideChildBoxes(n, o, invD, tmin, t);
+            uvec4 child = mix(n.index, uvec4(0x80000000u) | (n.count << 27u) | n.index, notEqual(n.count, uvec4(0u)));
+            VKP_SORT_PAIR(0, 1)
+            VKP_SORT_PAIR(2, 3)
+            VKP_SORT_PAIR(0, 2)
+            VKP_SORT_PAIR(1, 3)
+            VKP_SORT_PAIR(1, 2)
+            VKP_WIDE_PUSH(3)
+            VKP_WIDE_PUSH(2)
+            VKP_WIDE_PUSH(1)
+            if (key[0] < VKP_FAR) next = child[0];
+        }
+        if (next == 0xffffffffu) {
+            if (sp == 0u) {
+                finished = true;
+                break;
+            }
+            sp -= 1u;
+            next = stack[sp];
+        }
+        if ((next & 0x80000000u) != 0u) {
+            leafFirst = next & 0x07ffffffu;
+            leafLeft = (next >> 27u) & 15u;
+        } else {
+            node = next;
+        }
+    }
+    if (!finished || overflow) passes = max(passes, uint(VKP_MAX_PASSES));
+    return found;
+}
+#else
 bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, inout float t, inout uint primIndex,
                       inout vec2 abHit, inout uint inst, uint instId, inout uint passes) {
     vec3 invD = safeInverse(d);
@@ -78,3 +145,4 @@ bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, 
     if (!finished || overflow) passes = max(passes, uint(VKP_MAX_PASSES));
     return found;
 }
+#endif  // VKP_WIDE_POSTPONE

@@ -43,6 +43,8 @@
 #include "bvh_trace_wide_bda.spv.h"
 #include "bvh_trace_wide_quantized.spv.h"
 #include "bvh_trace_wide_recull.spv.h"
+#include "bvh_trace_wide_postpone.spv.h"
+#include "bvh_trace_wide_ssbo.spv.h"
 #include "bvh_trace_wide_unordered.spv.h"
 #include "bvh_trace_wide8.spv.h"
 #include "gpu_env.h"
@@ -210,6 +212,10 @@ void benchScene(VulkanDevice& dev, const char* label, const Scene& scene) {
         {"wide4 unordered", std::span<const std::uint32_t>(kBvhTraceWideUnorderedSpv, std::size(kBvhTraceWideUnorderedSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true},
         {"wide4 recull", std::span<const std::uint32_t>(kBvhTraceWideRecullSpv, std::size(kBvhTraceWideRecullSpv)),
+         vk::DescriptorType::eUniformTexelBuffer, true},
+        {"wide4 ssbo", std::span<const std::uint32_t>(kBvhTraceWideSsboSpv, std::size(kBvhTraceWideSsboSpv)),
+         vk::DescriptorType::eStorageBuffer, true},
+        {"wide4 postponed leaves", std::span<const std::uint32_t>(kBvhTraceWidePostponeSpv, std::size(kBvhTraceWidePostponeSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true},
         {"wide4 quantized", std::span<const std::uint32_t>(kBvhTraceWideQuantizedSpv, std::size(kBvhTraceWideQuantizedSpv)),
          vk::DescriptorType::eUniformTexelBuffer, true, false, true},
