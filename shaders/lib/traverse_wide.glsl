@@ -73,6 +73,18 @@ vec4 vkpWideChildBoxes(GpuWideNode n, vec3 o, vec3 invD, float tmin, float t) {
     return tb;
 }
 
+// The step's end: key/child sorted nearest first by the 5-comparator network, then the hit children
+// after the first pushed far to near (the first is descended into).
+#define VKP_WIDE_SORT_PUSH                      \
+    VKP_SORT_PAIR(0, 1)                         \
+    VKP_SORT_PAIR(2, 3)                         \
+    VKP_SORT_PAIR(0, 2)                         \
+    VKP_SORT_PAIR(1, 3)                         \
+    VKP_SORT_PAIR(1, 2)                         \
+    VKP_WIDE_PUSH(3)                            \
+    VKP_WIDE_PUSH(2)                            \
+    VKP_WIDE_PUSH(1)
+
 // The bottom level of an instance (shared/instance.h): its triangles are plain leaf primitives.
 #define VKP_WIDE_LOOP_FN vkpWideLoopBottom
 #define VKP_WIDE_LEAF(p) vkpLeafHitInstance(p, o, d, tmin, t, primIndex, abHit, inst, instId)
@@ -111,6 +123,7 @@ bool vkpTraverseWide(const bool anyHit, vec3 o, vec3 d, float tmin, float tmax, 
 
 #undef VKP_SORT_PAIR
 #undef VKP_WIDE_PUSH
+#undef VKP_WIDE_SORT_PUSH
 
 /// Closest hit, as traceClosest; inst receives the instance whose triangle was hit (two-level BVH,
 /// shared/instance.h; GPU_NO_INSTANCE: a top-level primitive, else primIndex and ab are the

@@ -43,14 +43,7 @@ bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, 
             GpuWideNode n = fetchWideNode(node);
             vec4 key = vkpWideChildBoxes(n, o, invD, tmin, t);
             uvec4 child = mix(n.index, uvec4(0x80000000u) | (n.count << 27u) | n.index, notEqual(n.count, uvec4(0u)));
-            VKP_SORT_PAIR(0, 1)
-            VKP_SORT_PAIR(2, 3)
-            VKP_SORT_PAIR(0, 2)
-            VKP_SORT_PAIR(1, 3)
-            VKP_SORT_PAIR(1, 2)
-            VKP_WIDE_PUSH(3)
-            VKP_WIDE_PUSH(2)
-            VKP_WIDE_PUSH(1)
+            VKP_WIDE_SORT_PUSH
             if (key[0] < VKP_FAR) next = child[0];
         }
         if (next == 0xffffffffu) {
@@ -124,14 +117,7 @@ bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, 
         vec4 key = mix(vec4(VKP_FAR), tb, inner);
 #endif
         uvec4 child = n.index;
-        VKP_SORT_PAIR(0, 1)
-        VKP_SORT_PAIR(2, 3)
-        VKP_SORT_PAIR(0, 2)
-        VKP_SORT_PAIR(1, 3)
-        VKP_SORT_PAIR(1, 2)
-        VKP_WIDE_PUSH(3)
-        VKP_WIDE_PUSH(2)
-        VKP_WIDE_PUSH(1)
+        VKP_WIDE_SORT_PUSH
         if (key[0] < VKP_FAR) {
             node = child[0];
         } else if (sp > 0u) {
