@@ -22,6 +22,7 @@ h=${H:-36}
 a=${A:-8}
 b=${B:-72}
 command -v valgrind >/dev/null || { echo "instructions-per-sample: valgrind is missing (apt-get install valgrind)" >&2; exit 2; }
+command -v callgrind_annotate >/dev/null || { echo "instructions-per-sample: callgrind_annotate is missing (apt-get install valgrind)" >&2; exit 2; }
 # vkpath re-executes itself for huge pages (host/core/huge_pages.h), which would leave valgrind
 # (it does not follow exec here): naming the tunable stops that, and keeps 4 KiB pages.
 export GLIBC_TUNABLES=${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=0
