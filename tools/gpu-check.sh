@@ -14,8 +14,10 @@
 #   --tests REGEX  only the test binaries whose name matches (default: every tests/gpu binary)
 #   --device SEL   passed to vkpath (index or name substring; default: the most capable device)
 #
-# Copy the repository with its build tree (tools/, scenes/, build/release/) to the machine, keeping
-# their places relative to each other, and run this from the copy's root. The tests find the
+# On the build machine, first `cmake --build build/release --target bench_scenes` (the suite's
+# dense mesh, generated with Python into build/release/bench-scenes). Copy the repository with its
+# build tree (tools/, scenes/, build/release/) to the machine, keeping their places relative to
+# each other, and run this from the copy's root. The tests find the
 # scenes and the vkpath binary through VKPATH_SOURCE_DIR and VKPATH_BINARY (tests/support/
 # test_paths.h), which this script sets, so the copy may live anywhere. CI=true is set: a missing
 # device or a skipped GPU test is a failure, as in CI. Every test binary and every render runs under
@@ -25,7 +27,8 @@
 # "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
 # "rays_per_second_steady", "seconds_to_first_sample", "seconds_longest_dispatch",
 # "samples_per_dispatch", "nonfinite_samples", "pipeline_cache_bytes_loaded"}, ...], "seconds": total}. The
-# exit status is 0 only when every test binary passed and every render succeeded.
+# exit status is 0 only when every test binary passed and every render succeeded (the dense mesh
+# missing counts as a failed render).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build/release
@@ -101,21 +104,35 @@ if [ "$run_tests" = 1 ]; then
   tests_json="{\"binaries\": $binaries, \"passed\": $passed, \"failed\": $failed, \"failures\": [$list], \"seconds\": $(($(date +%s) - t0))}"
 fi
 
-# ---- The suite's scenes (tools/bench/bench.py SCENES; the generated dense mesh needs Python and
-# is left to tools/bench.sh): a warm-up render, then a timed one.
+# ---- The suite's scenes (tools/bench/bench.py SCENES): a warm-up render, then a timed one. The
+# dense mesh is generated (it needs Python), on the build machine: `cmake --build DIR --target
+# bench_scenes` puts it in DIR/bench-scenes, which travels with the build; without it the check
+# says so and fails.
 bench_json=""
 if [ "$run_bench" = 1 ]; then
+  scenes=()
+  for s in cornell-book3 cornell-classic cornell-lights spheres-book1 env-sky next-week/final-scene; do
+    scenes+=("$root/scenes/$s.json")
+  done
+  dense=$build/bench-scenes/dense-mesh.json
+  if [ -f "$dense" ]; then
+    scenes+=("$dense")
+  else
+    status=1
+    echo "gpu-check: $dense is missing: run 'cmake --build <build> --target bench_scenes' on the build machine"
+    bench_json="{\"scene\": \"dense-mesh\", \"error\": $(json_str "not generated: cmake --build <build> --target bench_scenes on the build machine")}"
+  fi
   # vkpath's kernel cache in the output folder: the warm-up render stores the specialized kernel
   # and the driver's VkPipelineCache data there, and the timed render loads them
   # (pipeline_cache_bytes_loaded > 0 where the driver keeps pipelines in it; lavapipe does not).
   export VKPATH_CACHE_DIR="$out/kernel-cache"
-  for scene in scenes/cornell-book3.json scenes/cornell-classic.json scenes/cornell-lights.json \
-               scenes/spheres-book1.json scenes/env-sky.json scenes/next-week/final-scene.json; do
+  for path in "${scenes[@]}"; do
+    scene=${path#"$root"/}
     name=$(basename "$scene" .json)
     echo "gpu-check: $scene, ${size}x$size, $seconds s"
     common=(--width "$size" --height "$size" "${device[@]+"${device[@]}"}" --quiet)
-    timeout 600 "$vkpath" render "$root/$scene" "${common[@]}" --spp 1 -o "$out/$name-warmup.pfm" >/dev/null 2>&1
-    if timeout $((seconds * 3 + 300)) "$vkpath" render "$root/$scene" "${common[@]}" --spp 16777216 --time "$seconds" \
+    timeout 600 "$vkpath" render "$path" "${common[@]}" --spp 1 -o "$out/$name-warmup.pfm" >/dev/null 2>&1
+    if timeout $((seconds * 3 + 300)) "$vkpath" render "$path" "${common[@]}" --spp 16777216 --time "$seconds" \
          --stats-json "$out/$name.json" -o "$out/$name.exr" >"$out/$name.log" 2>&1; then
       s=$out/$name.json
       entry="{\"scene\": $(json_str "$scene"), \"size\": \"${size}x$size\", \"seconds\": $seconds"
