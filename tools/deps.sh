@@ -13,6 +13,7 @@ packages=(
   libglm-dev libstb-dev nlohmann-json3-dev libtinyexr-dev libtinygltf-dev libgtest-dev
   libdraco-dev libmeshoptimizer-dev
   openimageio-tools  # oiiotool: the GPU tests read vkpath's EXR layers with the OpenEXR library too
+  python3  # the build's dense-mesh scene (bench_scenes) and the gpu-check.sh smoke test
 )
 for option in "$@"; do
   case "$option" in

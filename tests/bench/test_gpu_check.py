@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""CTest gpu_check_smoke: runs tools/gpu-check.sh (the script for a machine with a real GPU, issue 18)
+end to end on whatever device this machine has (lavapipe in CI), without its test part and with
+tiny renders, and checks its summary: exit status 0, "ok": true, the device named, and one entry
+per benchmark-suite scene, the generated dense mesh included (the bench_scenes target), each with
+samples, a positive steady rays/s, a time to first sample, and no non-finite sample or cut path.
+The script runs rarely and elsewhere; this keeps it from rotting unnoticed.
+Usage: test_gpu_check.py SOURCE_DIR BUILD_DIR WORKDIR
+Exit status: 0 pass, 1 fail, 77 (skipped) without a Vulkan device unless CI=true."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+SCENES = ["cornell-book3", "cornell-classic", "cornell-lights", "spheres-book1", "env-sky", "final-scene", "dense-mesh"]
+
+
+def fail(msg):
+    print("test_gpu_check: " + msg, file=sys.stderr)
+    sys.exit(1)
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    source, build, work = sys.argv[1:]
+    vkpath = os.path.join(build, "vkpath")
+    if subprocess.run([vkpath, "devices"], capture_output=True).returncode != 0 and os.environ.get("CI") != "true":
+        print("test_gpu_check: no Vulkan device: skipped", file=sys.stderr)
+        sys.exit(77)
+    out = os.path.join(work, "gpu-check-out")
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(work, exist_ok=True)
+    r = subprocess.run([os.path.join(source, "tools", "gpu-check.sh"), "--build", build, "--out", out, "--no-tests",
+                        "--seconds", "3", "--size", "16"], capture_output=True, text=True, timeout=600)
+    print(r.stdout)
+    if r.returncode != 0:
+        fail("gpu-check.sh exited %d: %s" % (r.returncode, (r.stdout + r.stderr)[-2000:]))
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    if s.get("ok") is not True:
+        fail("summary says not ok")
+    if not isinstance(s.get("device"), dict) or not s["device"].get("name"):
+        fail("summary names no device: %r" % s.get("device"))
+    names = [os.path.basename(b.get("scene", "")).replace(".json", "") for b in s["bench"]]
+    if sorted(names) != sorted(SCENES):
+        fail("scenes %s, expected %s" % (names, SCENES))
+    for b in s["bench"]:
+        if "error" in b:
+            fail("%s: %s" % (b["scene"], b["error"]))
+        if not (b["spp"] >= 1 and b["rays_per_second_steady"] > 0 and b["seconds_to_first_sample"] > 0):
+            fail("%s: implausible figures %r" % (b["scene"], b))
+        if b["nonfinite_samples"] != 0 or b["loop_guard_paths"] != 0:
+            fail("%s: non-finite samples or cut paths %r" % (b["scene"], b))
+    print("test_gpu_check: %d scenes on %s" % (len(names), s["device"]["name"]))
+
+
+if __name__ == "__main__":
+    main()
