@@ -14,10 +14,11 @@
 #   --tests REGEX  only the test binaries whose name matches (default: every tests/gpu binary)
 #   --device SEL   passed to vkpath (index or name substring; default: the most capable device)
 #
-# On the build machine, first `cmake --build build/release --target bench_scenes` (the suite's
-# dense mesh, generated with Python into build/release/bench-scenes). Copy the repository with its
-# build tree (tools/, scenes/, build/release/) to the machine, keeping their places relative to
-# each other, and run this from the copy's root. The tests find the
+# The build puts the suite's dense mesh (generated with Python) into build/release/bench-scenes and
+# the shared libraries vkpath needs beyond the C and C++ runtimes into build/release/lib (this
+# script puts them on LD_LIBRARY_PATH: the machine may lack Debian's packages). Copy the repository
+# with its build tree (tools/, scenes/, build/release/) to the machine, keeping their places
+# relative to each other, and run this from the copy's root. The tests find the
 # scenes and the vkpath binary through VKPATH_SOURCE_DIR and VKPATH_BINARY (tests/support/
 # test_paths.h), which this script sets, so the copy may live anywhere. CI=true is set: a missing
 # device or a skipped GPU test is a failure, as in CI. Every test binary and every render runs under
@@ -49,7 +50,7 @@ while [ $# -gt 0 ]; do
     --no-tests) run_tests=0; shift ;;
     --no-bench) run_bench=0; shift ;;
     --device) device=(--device "$2"); shift 2 ;;
-    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,/^set -uo pipefail/{/^set /!p}' "$0"; exit 0 ;;
     *) echo "gpu-check: unknown option $1 (--help)" >&2; exit 2 ;;
   esac
 done
@@ -58,6 +59,8 @@ vkpath=$build/vkpath
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 export CI=true VKPATH_SOURCE_DIR="$root" VKPATH_BINARY="$vkpath" VKPATH_TEST_TMP="$out/scratch"
+# Debian's libraries that vkpath and the tests load, copied by the build (tools/bundle-libs.sh).
+[ -d "$build/lib" ] && export LD_LIBRARY_PATH="$build/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 start=$(date +%s)
 device_json=""
 status=0
