@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The check to run on a machine with a real GPU (issue 18): the GPU tests of a build made on
 # another machine and copied over, then a short benchmark of every scene of the benchmark suite,
-# summed up in one JSON file. Needs nothing but bash, coreutils and the Vulkan loader with a
-# driver: no compiler, no CMake, no network, no package archive (the machine may have none).
+# summed up in one JSON file. Needs nothing but bash, coreutils, the C and C++ runtimes (glibc 2.34,
+# libstdc++ with GLIBCXX_3.4.29) and the Vulkan loader with a driver: no compiler, no CMake, no
+# network, no package archive (the machine may have none).
 #
 #   tools/gpu-check.sh [--build DIR] [--out DIR] [--seconds S] [--size N] [--tests REGEX]
 #                      [--no-tests] [--no-bench] [--device SEL]
