@@ -130,6 +130,20 @@ def load_average():
         return "?"
 
 
+def cpu_model():
+    """The CPU as the machine names it (/proc/cpuinfo's first "model name"; a virtual machine may name
+    only the family), with its widest vector extension: ratios to Embree have moved between days,
+    and a different host is one possible cause (docs/performance.md "Ratio to Embree")."""
+    try:
+        text = open("/proc/cpuinfo").read()
+    except OSError:
+        return "?"
+    name = next((line.split(":", 1)[1].strip() for line in text.splitlines() if line.startswith("model name")), "?")
+    flags = next((line.split(":", 1)[1].split() for line in text.splitlines() if line.startswith("flags")), [])
+    widest = "avx512f" if "avx512f" in flags else "avx2" if "avx2" in flags else "sse"
+    return "%s (%s)" % (name, widest)
+
+
 def git_describe():
     try:
         head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
@@ -579,6 +593,7 @@ def main():
         "git": git_describe(), "thresholds": list(THRESHOLDS), "default_sampler": vk.default_sampler,
         "command": " ".join(sys.argv),
         "machine": {"device": device["name"], "driver": device["driver_info"], "cpus": os.cpu_count(),
+                    "cpu": cpu_model(),
                     "load_before": load_before, "load_after": load_average()},
         "error_log_overhead": {"rows": rows, "seconds_per_row": secs / rows if rows else 0.0,
                                "fraction": secs / wall if wall else 0.0},

@@ -67,9 +67,9 @@ def write_summary_md(path, run):
     m = run["machine"]
     L.append("# vkpath benchmark (%s)" % run["mode"])
     L.append("")
-    L.append("%s, vkpath %s (git %s), device %s, driver %s, %d CPUs; load average %s before, %s after; "
+    L.append("%s, vkpath %s (git %s), device %s, driver %s, %d CPUs (%s); load average %s before, %s after; "
              "%.0f s in all." % (run["date"], run["vkpath_version"], run["git"], m["device"], m["driver"], m["cpus"],
-                                 m["load_before"], m["load_after"], run["seconds"]))
+                                 m.get("cpu", "?"), m["load_before"], m["load_after"], run["seconds"]))
     L.append("")
     L.append("Thresholds are relMSE against the reference; times are wall seconds since process start "
              "(set-up, scene load, BVH, shader JIT with a warm Mesa cache, error rows: everything). "
