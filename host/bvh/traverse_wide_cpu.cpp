@@ -47,12 +47,9 @@ bool loop(const Arrays& a, std::uint32_t root, const vec3& o, const vec3& d, flo
     while (passes < maxPasses) {
         passes += 2u;
         const GpuWideNode& n = at(a.nodes, node, "node");
-        float tb[4];
+        const vec4 tb = intersectWideChildren(n, o, invD, tmin, t);
         uint nLeaf[4];
-        for (int k = 0; k < 4; ++k) {
-            tb[k] = intersectBox(vec3(n.loX[k], n.loY[k], n.loZ[k]), vec3(n.hiX[k], n.hiY[k], n.hiZ[k]), o, invD, tmin, t);
-            nLeaf[k] = (tb[k] < VKP_FAR) ? n.count[k] : 0u;
-        }
+        for (int k = 0; k < 4; ++k) nLeaf[k] = (tb[k] < VKP_FAR) ? n.count[k] : 0u;
         const uint s1 = nLeaf[0], s2 = s1 + nLeaf[1], s3 = s2 + nLeaf[2], total = s3 + nLeaf[3];
         for (uint i = 0u; i < total; ++i) {
             passes += 1u;

@@ -61,18 +61,6 @@ GpuInstance fetchInstance(uint i) {
         }                                       \
     }
 
-/// Entry distances of the ray o + t d (invD = safeInverse(d)) into node n's four child boxes, t in
-/// (tmin, t) (intersectBox: VKP_FAR where a box is missed). Used by the bench's postponed-leaves
-/// loop; the kernels' loop keeps its four tests inline, so its SPIR-V stays as measured.
-vec4 vkpWideChildBoxes(GpuWideNode n, vec3 o, vec3 invD, float tmin, float t) {
-    vec4 tb;
-    tb.x = intersectBox(vec3(n.loX.x, n.loY.x, n.loZ.x), vec3(n.hiX.x, n.hiY.x, n.hiZ.x), o, invD, tmin, t);
-    tb.y = intersectBox(vec3(n.loX.y, n.loY.y, n.loZ.y), vec3(n.hiX.y, n.hiY.y, n.hiZ.y), o, invD, tmin, t);
-    tb.z = intersectBox(vec3(n.loX.z, n.loY.z, n.loZ.z), vec3(n.hiX.z, n.hiY.z, n.hiZ.z), o, invD, tmin, t);
-    tb.w = intersectBox(vec3(n.loX.w, n.loY.w, n.loZ.w), vec3(n.hiX.w, n.hiY.w, n.hiZ.w), o, invD, tmin, t);
-    return tb;
-}
-
 // The step's end: key/child sorted nearest first by the 5-comparator network, then the hit children
 // after the first pushed far to near (the first is descended into).
 #define VKP_WIDE_SORT_PUSH                      \

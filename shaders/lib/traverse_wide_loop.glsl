@@ -41,7 +41,7 @@ bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, 
         } else {
             passes += 2u;
             GpuWideNode n = fetchWideNode(node);
-            vec4 key = vkpWideChildBoxes(n, o, invD, tmin, t);
+            vec4 key = intersectWideChildren(n, o, invD, tmin, t);
             uvec4 child = mix(n.index, uvec4(0x80000000u) | (n.count << 27u) | n.index, notEqual(n.count, uvec4(0u)));
             VKP_WIDE_SORT_PUSH
             if (key[0] < VKP_FAR) next = child[0];
@@ -77,11 +77,7 @@ bool VKP_WIDE_LOOP_FN(const bool anyHit, uint root, vec3 o, vec3 d, float tmin, 
     while (passes < uint(VKP_MAX_PASSES)) {
         passes += 2u;
         GpuWideNode n = fetchWideNode(node);
-        vec4 tb;
-        tb.x = intersectBox(vec3(n.loX.x, n.loY.x, n.loZ.x), vec3(n.hiX.x, n.hiY.x, n.hiZ.x), o, invD, tmin, t);
-        tb.y = intersectBox(vec3(n.loX.y, n.loY.y, n.loZ.y), vec3(n.hiX.y, n.hiY.y, n.hiZ.y), o, invD, tmin, t);
-        tb.z = intersectBox(vec3(n.loX.z, n.loY.z, n.loZ.z), vec3(n.hiX.z, n.hiY.z, n.hiZ.z), o, invD, tmin, t);
-        tb.w = intersectBox(vec3(n.loX.w, n.loY.w, n.loZ.w), vec3(n.hiX.w, n.hiY.w, n.hiZ.w), o, invD, tmin, t);
+        vec4 tb = intersectWideChildren(n, o, invD, tmin, t);
         bvec4 hit = lessThan(tb, vec4(VKP_FAR));
         uvec4 nLeaf = mix(uvec4(0u), n.count, hit);
         uint s1 = nLeaf.x;

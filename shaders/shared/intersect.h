@@ -6,6 +6,7 @@
 #define VKP_INTERSECT_H
 #include "gpu_types.h"
 #include "ray_offset.h"
+#include "wide_bvh.h"
 
 VKP_BEGIN
 
@@ -326,6 +327,19 @@ VKP_FN float intersectBox(vec3 bmin, vec3 bmax, vec3 o, vec3 invD, float tmin, f
     exit = (f1 < exit) ? f1 : exit;
     exit = (f2 < exit) ? f2 : exit;
     return (enter <= exit * VKP_BOX_EXIT_SCALE) ? enter : VKP_FAR;
+}
+
+/// Entry distances of the ray o + t d (invD = safeInverse(d)), t in (tmin, tmax), into the four
+/// child boxes of the 4-wide node n (shared/wide_bvh.h): intersectBox per child, VKP_FAR where a box
+/// is missed or the slot unused. The one box test of the 4-wide traversals (lib/traverse_wide_loop.glsl,
+/// its CPU twin host/bvh/traverse_wide_cpu.cpp, the bench's 8-wide halves).
+VKP_FN vec4 intersectWideChildren(GpuWideNode n, vec3 o, vec3 invD, float tmin, float tmax) {
+    vec4 tb;
+    tb.x = intersectBox(vec3(n.loX.x, n.loY.x, n.loZ.x), vec3(n.hiX.x, n.hiY.x, n.hiZ.x), o, invD, tmin, tmax);
+    tb.y = intersectBox(vec3(n.loX.y, n.loY.y, n.loZ.y), vec3(n.hiX.y, n.hiY.y, n.hiZ.y), o, invD, tmin, tmax);
+    tb.z = intersectBox(vec3(n.loX.z, n.loY.z, n.loZ.z), vec3(n.hiX.z, n.hiY.z, n.hiZ.z), o, invD, tmin, tmax);
+    tb.w = intersectBox(vec3(n.loX.w, n.loY.w, n.loZ.w), vec3(n.hiX.w, n.hiY.w, n.hiZ.w), o, invD, tmin, tmax);
+    return tb;
 }
 
 VKP_END

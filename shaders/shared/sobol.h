@@ -128,12 +128,17 @@ VKP_FN uint sobolGroupSeed(uint pixelSeed, uint group) { return pcgHash(pixelSee
 /// Scramble seed of coordinate dim (0..3) of a group.
 VKP_FN uint sobolScrambleSeed(uint groupSeed, uint dim) { return pcgHash(groupSeed + dim + 1u); }
 
+/// Coordinate dim of a group with Sobol' bits `bits` (of the shuffled index), Owen-scrambled.
+VKP_FN uint sobolScrambled(uint bits, uint groupSeed, uint dim) {
+    return nestedUniformScramble(bits, sobolScrambleSeed(groupSeed, dim));
+}
+
 /// Sample `index`, dimension 4 group + dim (dim 0..3) of the pixel whose seed is pixelSeed, as a
 /// 32-bit fraction: shuffled index, Sobol' coordinate, Owen scramble.
 VKP_FN uint sobolSampleBits(uint pixelSeed, uint index, uint group, uint dim) {
     uint gs = sobolGroupSeed(pixelSeed, group);
     uint i = nestedUniformScramble(index, gs);
-    return nestedUniformScramble(sobolBits(i, dim), sobolScrambleSeed(gs, dim));
+    return sobolScrambled(sobolBits(i, dim), gs, dim);
 }
 
 /// The same as a float in [0,1).
@@ -146,15 +151,16 @@ VKP_FN float sobolSample(uint pixelSeed, uint index, uint group, uint dim) {
 VKP_FN float sobolSampleDim23(uint pixelSeed, uint index, uint group, uint dim) {
     uint gs = sobolGroupSeed(pixelSeed, group);
     uint i = nestedUniformScramble(index, gs);
-    return sobolToFloat(nestedUniformScramble(sobolDim23Bits(i, dim), sobolScrambleSeed(gs, dim)));
+    return sobolToFloat(sobolScrambled(sobolDim23Bits(i, dim), gs, dim));
 }
+
 /// Dimensions 0 and 1 of a group (a (0,2)-sequence before scrambling, so every prefix of 2^m
 /// samples has one point in each of the 2^m elementary intervals of any shape), one shuffle.
 VKP_FN vec2 sobolSample2(uint pixelSeed, uint index, uint group) {
     uint gs = sobolGroupSeed(pixelSeed, group);
     uint i = nestedUniformScramble(index, gs);
-    float a = sobolToFloat(nestedUniformScramble(sobolReverseBits(i), sobolScrambleSeed(gs, 0u)));
-    float b = sobolToFloat(nestedUniformScramble(sobolDim1Bits(i), sobolScrambleSeed(gs, 1u)));
+    float a = sobolToFloat(sobolScrambled(sobolReverseBits(i), gs, 0u));
+    float b = sobolToFloat(sobolScrambled(sobolDim1Bits(i), gs, 1u));
     return vec2(a, b);
 }
 

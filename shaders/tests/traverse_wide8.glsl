@@ -43,10 +43,7 @@
 
 /// Box entry distances of the four children of half h, and their leaf counts (0 for a missed child).
 void vkpWide8Half(GpuWideNode h, vec3 o, vec3 invD, float tmin, float t, out vec4 tb, out uvec4 nLeaf) {
-    tb.x = intersectBox(vec3(h.loX.x, h.loY.x, h.loZ.x), vec3(h.hiX.x, h.hiY.x, h.hiZ.x), o, invD, tmin, t);
-    tb.y = intersectBox(vec3(h.loX.y, h.loY.y, h.loZ.y), vec3(h.hiX.y, h.hiY.y, h.hiZ.y), o, invD, tmin, t);
-    tb.z = intersectBox(vec3(h.loX.z, h.loY.z, h.loZ.z), vec3(h.hiX.z, h.hiY.z, h.hiZ.z), o, invD, tmin, t);
-    tb.w = intersectBox(vec3(h.loX.w, h.loY.w, h.loZ.w), vec3(h.hiX.w, h.hiY.w, h.hiZ.w), o, invD, tmin, t);
+    tb = intersectWideChildren(h, o, invD, tmin, t);
     nLeaf = mix(uvec4(0u), h.count, lessThan(tb, vec4(VKP_FAR)));
 }
 
