@@ -7,32 +7,17 @@
 #           EXR PFM_PREFIX SCRATCH_DIR LAYER[,LAYER...]
 # PFM_PREFIX.pfm is the colour image (Blender's "Combined" pass), PFM_PREFIX.<layer>.pfm each layer.
 # Prints one line per pass; raises (exit code 1) when a pass is missing, differs, or is all zero.
-import math
 import os
-import struct
 import sys
 
 import bpy
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
+import pfm  # noqa: E402  (the benchmark harness's PFM reader: rows top first)
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 exr, prefix, scratch, layers = argv[0], argv[1], argv[2], argv[3].split(",")
-
-
-def read_pfm(path):
-    """(width, height, channels, floats bottom row first), as the PFM stores them."""
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = (int(v) for v in f.readline().split())
-        scale = float(f.readline())
-        channels = 3 if kind == b"PF" else 1
-        count = width * height * channels
-        data = struct.unpack(("<" if scale < 0 else ">") + "%df" % count, f.read(4 * count))
-    return width, height, channels, data
-
-
-def same(a, b):
-    return a == b or (math.isnan(a) and math.isnan(b))
-
 
 image = bpy.data.images.load(exr)
 scene = bpy.context.scene
@@ -49,10 +34,11 @@ scene.render.image_settings.color_depth = "32"
 scene.view_settings.view_transform = "Standard"  # EXR output is linear anyway; no look either
 passes = [("Combined", prefix + ".pfm")] + [(layer, "%s.%s.pfm" % (prefix, layer)) for layer in layers]
 names = [o.name for o in source.outputs]
-for name, pfm in passes:
+for name, path in passes:
     if name not in names:
         raise RuntimeError("aov_compositor: Blender sees no pass '%s' in %s (it sees %s)" % (name, exr, names))
-    width, height, channels, expected = read_pfm(pfm)
+    expected = pfm.read_pfm(path)
+    height, width = expected.shape[:2]
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
     for link in list(tree.links):
@@ -62,22 +48,15 @@ for name, pfm in passes:
     bpy.ops.render.render(write_still=True)
     result = bpy.data.images.load(scene.render.filepath)
     if tuple(result.size) != (width, height):
-        raise RuntimeError("aov_compositor: pass %s is %s in Blender, %dx%d in %s" % (name, tuple(result.size), width, height, pfm))
-    got = result.pixels[:]  # RGBA, bottom row first, as the PFM
-    differing = 0
-    nonzero = 0
-    for i in range(width * height):
-        for c in range(3):
-            want = expected[i * channels + (c if channels == 3 else 0)]
-            nonzero += want != 0.0
-            if not same(got[4 * i + c], want):
-                if differing < 3:
-                    print("aov_compositor: %s pixel %d channel %d: Blender %r, vkpath %r" % (name, i, c, got[4 * i + c], want))
-                differing += 1
-    print("aov_compositor: pass %s (%dx%d, %d channel%s): %d values differ" %
-          (name, width, height, channels, "s" if channels > 1 else "", differing))
-    if differing:
-        raise RuntimeError("aov_compositor: pass %s differs from %s in %d values" % (name, pfm, differing))
-    if not nonzero:
+        raise RuntimeError("aov_compositor: pass %s is %s in Blender, %dx%d in %s" % (name, tuple(result.size), width, height, path))
+    # Blender's pixels: RGBA, bottom row first; a one-channel pass (depth, spp) in each of R, G, B.
+    got = np.array(result.pixels[:], dtype=np.float32).reshape(height, width, 4)[::-1, :, :3]
+    differ = ~((got == expected) | (np.isnan(got) & np.isnan(expected)))
+    for y, x, c in np.argwhere(differ)[:3]:
+        print("aov_compositor: %s pixel (%d, %d) channel %d: Blender %r, vkpath %r" % (name, x, y, c, got[y, x, c], expected[y, x, c]))
+    print("aov_compositor: pass %s (%dx%d): %d values differ" % (name, width, height, np.count_nonzero(differ)))
+    if differ.any():
+        raise RuntimeError("aov_compositor: pass %s differs from %s in %d values" % (name, path, np.count_nonzero(differ)))
+    if not np.count_nonzero(expected):
         raise RuntimeError("aov_compositor: pass %s is all zero: nothing was compared" % name)
 print("aov_compositor: %d passes read through Blender's compositor, every value as vkpath wrote it" % len(passes))
