@@ -51,6 +51,32 @@ class MetricsTest(unittest.TestCase):
         self.assertAlmostEqual(metrics.mse(x, y), 5.0 / 6.0)
         self.assertAlmostEqual(metrics.relmse(x, y), (100.0 + 4.0 / 16.01) / 6.0)
 
+    def test_median_interval_ranks(self):
+        # Sign-test ranks (tables of the binomial distribution with p = 1/2): 15 values at 95 %: the
+        # 4th smallest and largest, P(B(15) <= 3) = 576 / 32768, coverage 1 - 2 x that = 0.96484.
+        m, lo, hi, cov = metrics.median_interval([15 - i for i in range(15)])  # any order
+        self.assertEqual((m, lo, hi), (8.0, 4.0, 12.0))
+        self.assertAlmostEqual(cov, 1.0 - 2.0 * 576.0 / 32768.0)
+        self.assertEqual(metrics.median_interval([1, 2, 3, 4, 5, 6])[:3], (3.5, 1.0, 6.0))  # 6: the extremes, 0.969
+        self.assertEqual(metrics.median_interval([3, 1, 2, 5, 4]), (3.0, None, None, None))  # 5 values: no 95 % interval
+        self.assertEqual(metrics.median_interval([2.0])[0], 2.0)
+        with self.assertRaises(ValueError):
+            metrics.median_interval([])
+
+    def test_median_interval_covers_the_median(self):
+        # 4000 draws of 15 values from a skewed distribution (lognormal, median 1): the interval
+        # must hold the median in 96.5 % of them, 3860 expected, standard deviation sqrt(4000 x
+        # 0.965 x 0.035) = 11.6; the bounds 3790 and 3930 are 6 standard deviations away (false
+        # failure about 2e-9), while a wrong rank, the 3rd or the 5th, would cover 99.3 % (3970)
+        # or 88.2 % (3526).
+        rng = np.random.default_rng(2026)
+        covered = 0
+        for _ in range(4000):
+            _, lo, hi, _ = metrics.median_interval(rng.lognormal(0.0, 0.5, 15))
+            covered += lo <= 1.0 <= hi
+        self.assertGreater(covered, 3790)
+        self.assertLess(covered, 3930)
+
     def test_noise_floor_matches_the_true_error_of_the_average(self):
         # Two halves = truth + independent Gaussian noise (sigma 0.1): the average's MSE is
         # sigma^2 / 2 = 0.005. With 3 * 200 * 200 values the estimate's relative standard error is
@@ -140,8 +166,23 @@ class EmbreeReportTest(unittest.TestCase):
         report.write_embree_md(lines, [ok, refused], "mis")
         text = "\n".join(lines)
         self.assertIn("## Ratio to Embree", text)
-        self.assertIn("| cornell-classic | 64x64 | 2 | 5 M | 10 M | **0.50x** | 4.570 / 4.560 | 400 / 900 | 0.7 |", text)
+        self.assertIn("| cornell-classic | 64x64 | 2 | 5 M | 10 M | **0.50x** | 1 | no interval (1 pair) | 4.570 / 4.560 "
+                      "| 400 / 900 | 0.7 |", text)
         self.assertIn("| env-sky | 96x54 | | | refused: an environment map: not supported |", text)
+
+    def test_pairs_and_the_targets_verdict(self):
+        base = {"threads": 2, "vkpath_rays_per_second": 8e6, "embree_rays_per_second": 1e7, "ratio": 0.8,
+                "vkpath_rays_per_sample": 4.57, "embree_rays_per_sample": 4.56, "vkpath_spp": 400, "embree_spp": 900,
+                "max_abs_z": 0.7, "pairs": 15}
+        met = dict(base, ratio_interval=[0.76, 0.83])
+        lines = []
+        report.write_embree_md(lines, [{"name": "cornell-classic", "size": "64x64", "embree": met}], "mis")
+        self.assertIn("| **0.80x** | 15 (0.76-0.83x) | met |", "\n".join(lines))
+        self.assertEqual(report.embree_verdict(dict(base, ratio_interval=[0.70, 0.74])), "not met")
+        self.assertEqual(report.embree_verdict(dict(base, ratio_interval=[0.70, 0.80])),
+                         "undecided (the interval contains 0.75x)")
+        self.assertEqual(report.embree_verdict(dict(base, pairs=3)), "no interval (3 pairs)")
+        self.assertEqual(report.embree_verdict(dict(base, ratio_interval=[0.75, 0.80])), "met")  # at the target counts
 
 
 class CyclesTest(unittest.TestCase):
