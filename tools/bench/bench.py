@@ -549,6 +549,8 @@ def main():
             ap.error("unknown setting(s): " + ", ".join(sorted(unknown_settings)))
     if args.parts - set(PARTS):
         ap.error("unknown part(s): " + ", ".join(sorted(args.parts - set(PARTS))))
+    if args.embree_pairs < 1:
+        ap.error("--embree-pairs wants at least 1, got %d" % args.embree_pairs)
     cfg = dict(MODES[mode])
     if args.mesh:
         try:
