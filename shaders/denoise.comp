@@ -14,7 +14,8 @@
 //          plus fireflyBound of their standard deviations, by no more than fireflyBound of its own.
 //  PASS 1, one a-trous level of step 2^level: a 5x5 B3-spline kernel with holes, each tap weighted
 //          by the edge-stopping functions of SVGF eq. 2-5 on normal, depth and luminance (the
-//          latter in units of sigmaL x the 3x3-blurred standard deviation of the centre); the
+//          latter in units of sigmaL x the 3x3-blurred standard deviation of the centre, for a
+//          tap brighter than the centre the smaller of that and the 3x3 median's); the
 //          variance is carried along, var' = sum w^2 var / (sum w)^2 (SVGF eq. 3). With
 //          push.remodulate the output is multiplied back by a (the last level).
 //          With push.ridge >= 0 a level is a local linear fit instead of a weighted mean: the
@@ -120,21 +121,43 @@ void demodulate(int x, int y, int i) {
     illumOut[i] = vec4(c, sdL * sdL);
 }
 
+/// The median of nine values: the 19 compare-exchanges of the median network in Paeth, "Median
+/// Finding on a 3x3 Grid" (Graphics Gems, 1990); v is left partly sorted.
+float median9(inout float v[9]) {
+#define VKP_SORT2(a, b) { float lo = min(v[a], v[b]); v[b] = max(v[a], v[b]); v[a] = lo; }
+    VKP_SORT2(1, 2) VKP_SORT2(4, 5) VKP_SORT2(7, 8) VKP_SORT2(0, 1) VKP_SORT2(3, 4) VKP_SORT2(6, 7)
+    VKP_SORT2(1, 2) VKP_SORT2(4, 5) VKP_SORT2(7, 8) VKP_SORT2(0, 3) VKP_SORT2(5, 8) VKP_SORT2(4, 7)
+    VKP_SORT2(3, 6) VKP_SORT2(1, 4) VKP_SORT2(2, 5) VKP_SORT2(4, 7) VKP_SORT2(4, 2) VKP_SORT2(6, 4)
+    VKP_SORT2(4, 2)
+#undef VKP_SORT2
+    return v[4];
+}
+
 void atrousLevel(int x, int y, int i) {
     const int w = int(push.width), h = int(push.rows);
     // The centre's luminance scale: sigmaL x the standard deviation, its variance blurred 3x3
-    // (SVGF eq. 5: a single pixel's variance estimate is itself noisy).
+    // (SVGF eq. 5: a single pixel's variance estimate is itself noisy). A tap brighter than the
+    // centre is judged by the smaller of that blurred variance and the median of the nine
+    // variances (edge pixels repeated): one very bright neighbour (the sun seen through glass in a
+    // few pixels) dominates the blur and would let a dark pixel take its light in, a halo that
+    // relMSE weighs heavily; the median ignores up to four such neighbours. Darker taps keep the
+    // blurred scale, so a bright outlier is still pulled towards its neighbours.
     float varBlur = 0.0, wBlur = 0.0;
+    float v9[9];
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             int qx = x + dx, qy = y + dy;
+            float var = texelFetch(uIllumIn, clamp(qy, 0, h - 1) * w + clamp(qx, 0, w - 1)).w;
+            v9[(dy + 1) * 3 + dx + 1] = var;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             float k = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
-            varBlur += k * texelFetch(uIllumIn, qy * w + qx).w;
+            varBlur += k * var;
             wBlur += k;
         }
+    varBlur /= wBlur;
     // A tiny floor keeps 0/0 out where the variance is 0: equal luminances weigh 1, others 0.
-    float lumScale = 1.0 / (push.sigmaL * sqrt(max(varBlur / wBlur, 0.0)) + 1e-20);
+    float lumScale = 1.0 / (push.sigmaL * sqrt(max(varBlur, 0.0)) + 1e-20);
+    float lumScaleBrighter = 1.0 / (push.sigmaL * sqrt(max(min(varBlur, median9(v9)), 0.0)) + 1e-20);
 
     vec4 centre = texelFetch(uIllumIn, i);
     vec4 g = texelFetch(uGuide, i);
@@ -158,7 +181,8 @@ void atrousLevel(int x, int y, int i) {
             vec4 q = texelFetch(uIllumIn, j);
             vec4 gq = texelFetch(uGuide, j);
             // Log of the edge-stopping weight (SVGF eq. 2-4), one exp2 per tap.
-            float logW = -abs(lumP - dot(kLuma, q.rgb)) * lumScale;
+            float lumQ = dot(kLuma, q.rgb);
+            float logW = -abs(lumP - lumQ) * (lumQ > lumP ? lumScaleBrighter : lumScale);
             if (hit != (gq.w >= 0.0)) {
                 logW = -1e30;  // a hit and a miss never mix
             } else if (hit) {
