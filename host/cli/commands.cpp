@@ -181,10 +181,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     const FlatBvh bvh = buildSceneBvh(job.scene, job.bvh);
     const GpuArrays arrays = packGpuArrays(job.scene, bvh, job.options);
     const double secondsBvh = since(t);
-    // The render key hashes every array byte by byte (about 0.15 s per 100 MB): only for a state
-    // file written (checkpoint, partial) or read (resume).
-    if (!job.session.checkpoint.empty() || !job.session.partial.empty() || resume)
-        job.session.key = renderKey(arrays, job.options);
+    if (job.session.writesState() || resume) job.session.key = renderKey(arrays, job.options);  // SessionOptions::key
     job.session.aovFrame = arrays.aovFrame;
     const std::uint32_t firstSample = a.sampleRange ? a.sampleRange->first : 0;
     if (resume) {

@@ -57,8 +57,12 @@ struct SessionOptions {
     double checkpointEvery = 60.0;
     /// `--partial FILE.exr`: the state at the end (also after a signal), for `vkpath merge`.
     std::filesystem::path partial;
-    /// The render's key, written into the checkpoint and the partial (render/render_key.h).
+    /// The render's key, written into the checkpoint and the partial (render/render_key.h). Needed
+    /// only where writesState() (or a resume compares it); hashing every array costs about 0.15 s
+    /// per 100 MB, so the CLI computes it only then.
     RenderKey key;
+    /// A state file is written: `--checkpoint` or `--partial`.
+    bool writesState() const { return !checkpoint.empty() || !partial.empty(); }
     /// `--aov`: feature layers of the final images and of EXR dumps (render/aov.h). The kernel's
     /// ones need RenderOptions::aov; aovFrame places their positions (GpuArrays::aovFrame).
     std::vector<Aov> aovs;

@@ -280,26 +280,31 @@ def bench_embree(vk, em, scene, runs, wh, seconds, startup, env, name, failures,
     does not support. With several pairs the ratio is the median of the pairs' ratios, with its
     distribution-free 95 % interval (metrics.median_interval) from 6 pairs on: on a machine whose
     speed drifts by tens of per cent within minutes, one pair says little."""
+    def run_embree():
+        return em.render(scene, runs, "embree", wh + ["--spp", BIG_SPP, "--time", "%.3f" % seconds, "-o", "embree.pfm",
+                                                     "--variance", "embree-var.pfm"], env)
+
+    def run_vkpath():
+        return vk.render(scene, runs, "embree-pair-vkpath", wh + ["--spp", BIG_SPP, "--time", "%.3f" % (seconds + startup),
+                                                                 "-o", "embree-pair-vkpath.pfm"], env)
+
     results = []
     worst_z = 0.0
     for i in range(pairs):
-        order = ("embree", "vkpath") if i % 2 == 0 else ("vkpath", "embree")
-        e = v = None
-        for who in order:
-            if who == "embree":
-                try:
-                    e = em.render(scene, runs, "embree", wh + ["--spp", BIG_SPP, "--time", "%.3f" % seconds, "-o",
-                                                              "embree.pfm", "--variance", "embree-var.pfm"], env)
-                except embree.EmbreeRefused as ex:
-                    log("  Embree reference: %s" % ex)
-                    reason = str(ex)
-                    if reason.startswith(str(scene) + ": "):
-                        reason = reason[len(str(scene)) + 2:]
-                    return {"refused": reason.replace("|", "/")}
+        embree_first = i % 2 == 0
+        try:
+            if embree_first:
+                e = run_embree()
+                v = run_vkpath()
             else:
-                v = vk.render(scene, runs, "embree-pair-vkpath", wh + ["--spp", BIG_SPP, "--time",
-                                                                      "%.3f" % (seconds + startup),
-                                                                      "-o", "embree-pair-vkpath.pfm"], env)
+                v = run_vkpath()
+                e = run_embree()
+        except embree.EmbreeRefused as ex:  # on the first pair, before vkpath runs
+            log("  Embree reference: %s" % ex)
+            reason = str(ex)
+            if reason.startswith(str(scene) + ": "):
+                reason = reason[len(str(scene)) + 2:]
+            return {"refused": reason.replace("|", "/")}
         rows = embree.compare_means(pfm.read_pfm(os.path.join(runs, "embree-pair-vkpath.pfm")), v["spp"],
                                     pfm.read_pfm(os.path.join(runs, "embree.pfm")),
                                     pfm.read_pfm(os.path.join(runs, "embree-var.pfm")), e["spp"])
@@ -312,8 +317,9 @@ def bench_embree(vk, em, scene, runs, wh, seconds, startup, env, name, failures,
         results.append((e, v, vk_rate))
         if pairs > 1:
             log("  pair %d of %d (%s first): vkpath %.3g, Embree %.3g rays/s: %.3fx" %
-                (i + 1, pairs, order[0], vk_rate, e["rays_per_second"], vk_rate / e["rays_per_second"]))
-    e, v, vk_rate = results[0]
+                (i + 1, pairs, "embree" if embree_first else "vkpath", vk_rate, e["rays_per_second"],
+                 vk_rate / e["rays_per_second"]))
+    e, v, _ = results[0]  # versions, threads, spp and rays per sample: the first pair's
     ratios = [r / ee["rays_per_second"] for ee, _, r in results]
     median, lo, hi, coverage = metrics.median_interval(ratios)
     out = {"embree_version": e["embree_version"], "threads": e["threads"],
