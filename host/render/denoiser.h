@@ -35,17 +35,22 @@ struct DenoiseInput {
 /// the synthetic scenes of tests/gpu/test_gpu_denoise.cpp (docs/design.md "Denoiser").
 struct DenoiseOptions {
     /// A-trous levels (1..10): level i has taps 2^i pixels apart; the filter reaches
-    /// filterRadius(iterations) = 2 (2^iterations - 1) pixels.
-    std::uint32_t iterations = 5;
+    /// filterRadius(iterations) = 2 (2^iterations - 1) pixels. 4, not SVGF's 5: the fifth level
+    /// (taps 16 pixels apart) added more bias than it removed noise on the suite's scenes
+    /// (docs/performance.md "sigmaNormal and the number of levels").
+    std::uint32_t iterations = 4;
     /// Luminance edge-stopping: a tap whose demodulated luminance differs from the centre's by
     /// sigmaLuminance standard deviations (of the centre's mean, blurred 3x3) weighs 1/e. Larger
     /// blurs more; as the variance goes to 0 every differing tap goes to weight 0.
     float sigmaLuminance = 4.0f;
     /// Normal edge-stopping: the weight is max(0, cos(angle between the normals))^sigmaNormal.
-    float sigmaNormal = 128.0f;
+    /// 16, not SVGF's 128: a 90-degree edge still weighs 0 and 45 degrees 0.004, while normals a
+    /// few degrees apart (a tessellated or small curved surface, the mean normals of mixed
+    /// pixels) mix (docs/performance.md "sigmaNormal and the number of levels").
+    float sigmaNormal = 16.0f;
     /// A mean normal shorter than this has no direction to trust: its pixel's samples found
     /// surfaces facing many ways or mostly none (the inside of a glass sphere full of fog, seen
-    /// through its refraction), so the unit vector made from it is noise, and at sigmaNormal 128
+    /// through its refraction), so the unit vector made from it is noise, and at sigmaNormal 128 (SVGF's)
     /// any two such pixels would never mix. Such a pixel is filtered as one without a normal
     /// (alike with others of its kind, never mixed with pixels that have one).
     float minNormalLength = 0.5f;

@@ -158,10 +158,12 @@ TEST(GpuDenoise, NoisyMeanNormalsOfMixedPixelsDoNotStopTheFilter) {
     // Every pixel straddles a fold (depth of field, a small object): each of its 16 samples finds
     // the face (0,0,1) or (1,0,0) at even odds, so its mean normal is (0.5, 0, 0.5) plus the
     // noise of 16 draws: its direction's standard deviation is 14 degrees (normalNoise). At
-    // sigmaNormal 128 two such normals mix only where their draws nearly agree (20 degrees apart
-    // weigh 1e-3). A constant scene: with the samples given, the filter must take off at least
-    // 95 % of the relMSE, and leave at most a quarter of what the same filter leaves with every
-    // normal taken as exact (normalNoise 0, SVGF's rule).
+    // SVGF's sigmaNormal 128 two such normals mix only where their draws nearly agree (20 degrees
+    // apart weigh 1e-3). A constant scene: with the samples given, the default filter must take
+    // off at least 95 % of the relMSE; and at sigmaNormal 128, where the rule matters most, the
+    // noise-aware exponent must leave at most a quarter of what the same filter leaves with every
+    // normal taken as exact (normalNoise 0, SVGF's rule). (The default sigmaNormal, 16, mixes such
+    // normals by itself: 20 degrees apart weigh 0.37.)
     const std::uint32_t w = 64, h = 64, spp = 16;
     const HalfSide side{{0.5f, 0.5f, 0.5f}, 1.0f, {0.0f, 0.0f, 1.0f}, 4.0f};
     CleanScene s = twoHalves(w, h, side, side);
@@ -175,13 +177,17 @@ TEST(GpuDenoise, NoisyMeanNormalsOfMixedPixelsDoNotStopTheFilter) {
     const NoisyRender r = renderNoisy(s, spp, 22);
     DenoiseInput in = inputOf(s, r);
     in.samples = &samples;
-    DenoiseOptions exact;
+    DenoiseOptions aware;
+    aware.sigmaNormal = 128.0f;
+    DenoiseOptions exact = aware;
     exact.normalNoise = 0.0f;
-    Denoiser svgf(dev, exact);
-    const double raw = relMse(r.color, s.radiance), kept = relMse(denoiser(dev).run(in), s.radiance),
-                 stopped = relMse(svgf.run(in), s.radiance);
-    std::printf("  noisy mixed normals: relMSE raw %.4g, denoised %.4g, with every normal exact %.4g\n", raw, kept, stopped);
+    Denoiser awareFilter(dev, aware), svgf(dev, exact);
+    const double raw = relMse(r.color, s.radiance), byDefault = relMse(denoiser(dev).run(in), s.radiance),
+                 kept = relMse(awareFilter.run(in), s.radiance), stopped = relMse(svgf.run(in), s.radiance);
+    std::printf("  noisy mixed normals: relMSE raw %.4g, denoised %.4g; at sigmaNormal 128 %.4g, with every normal exact %.4g\n",
+                raw, byDefault, kept, stopped);
     // 4096 pixels x 3 channels: the relMSE's own relative spread is ~2 %, far inside the margins.
+    EXPECT_LT(byDefault, 0.05 * raw);
     EXPECT_LT(kept, 0.05 * raw);
     EXPECT_LT(kept, 0.25 * stopped);
 }
