@@ -25,6 +25,7 @@ import embree  # noqa: E402
 import metrics  # noqa: E402
 import pfm  # noqa: E402
 import report  # noqa: E402
+import room_direct  # noqa: E402
 import vkrun  # noqa: E402
 
 
@@ -40,6 +41,29 @@ class PfmTest(unittest.TestCase):
             first = np.frombuffer(data[len(b"PF\n3 2\n-1.0\n"):], "<f4", count=9)
             np.testing.assert_array_equal(first, img[1].ravel())
             np.testing.assert_array_equal(pfm.read_pfm(p), img)
+
+
+class RoomDirectTest(unittest.TestCase):
+    """tools/bench/room_direct.py: its closed form and its pixel classification."""
+
+    def test_polygon_irradiance_limits(self):
+        # Under the light's centre, far below, the light is a small source: E = A / d^2 (per unit
+        # radiance, to (size / d)^2); 1e-3 below its centre it fills the hemisphere: E -> pi.
+        x = np.array([[278.0, 554.0 - 50000.0, 279.5]])
+        n = np.array([[0.0, 1.0, 0.0]])
+        self.assertAlmostEqual(room_direct.polygon_irradiance(x, n)[0] / (130 * 105 / 50000.0 ** 2), 1.0, places=5)
+        x = np.array([[278.0, 554.0 - 1e-3, 279.5]])
+        self.assertAlmostEqual(room_direct.polygon_irradiance(x, n)[0], np.pi, places=4)
+
+    def test_pixels_on_one_surface_and_mixed_pixels(self):
+        pure, expected = room_direct.closed_form(16)
+        self.assertEqual(expected.shape, (16, 16, 3))
+        for k in range(len(room_direct.SURFACES)):
+            self.assertGreater((pure == k).sum(), 0, room_direct.SURFACES[k][0])
+        self.assertGreater((pure == -1).sum(), 0)  # edges, the light, the black border
+        ceiling = [i for i, s in enumerate(room_direct.SURFACES) if s[0] == "ceiling"][0]
+        self.assertEqual(expected[pure == ceiling].max(), 0.0)  # it sees the light's back
+        self.assertGreater(expected[pure == 0].min(), 0.0)
 
 
 class MetricsTest(unittest.TestCase):

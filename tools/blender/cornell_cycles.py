@@ -12,7 +12,10 @@
 # default (its sampler, Russian roulette, light sampling).
 #
 # Usage: blender -b --factory-startup --python-exit-code 1 --python tools/blender/cornell_cycles.py --
-#            GLTF OUT.pfm SIZE SPP SEED THREADS
+#            GLTF OUT.pfm SIZE SPP SEED THREADS [MAX_BOUNCES [DROP_PREFIX]]
+# MAX_BOUNCES (default 50; 0: direct light only) and DROP_PREFIX (objects whose names start with it
+# are removed, e.g. box_ for the empty room of tools/bench/room_direct.py) serve the accuracy check
+# of docs/accuracy.md "Against Cycles: the Cornell box's walls".
 # writes OUT.pfm (linear RGB, float32, rows bottom to top, as vkpath writes PFM) and OUT.json
 # {"seconds_render": the render call's wall time, "spp", "seed", "threads", "size", "blender"}.
 import json
@@ -28,6 +31,8 @@ from common import cycles_settings, image_size, render_as_diffuse, world_color  
 
 args = sys.argv[sys.argv.index("--") + 1:]
 gltf, out_pfm, size, spp, seed, threads = args[0], args[1], int(args[2]), int(args[3]), int(args[4]), int(args[5])
+max_bounces = int(args[6]) if len(args) > 6 else 50
+drop_prefix = args[7] if len(args) > 7 else None
 
 # Debian 12's Blender 3.4 glTF importer still names np.bool, which Debian's numpy 1.24 removed.
 if tuple(int(v) for v in np.__version__.split(".")[:2]) >= (1, 24):
@@ -39,6 +44,10 @@ cameras = [o for o in scene.objects if o.type == "CAMERA"]
 if len(cameras) != 1:
     raise SystemExit("cornell_cycles: %s has %d cameras, expected 1" % (gltf, len(cameras)))
 scene.camera = cameras[0]
+if drop_prefix:
+    for o in [o for o in scene.objects if o.name.startswith(drop_prefix)]:
+        print("cornell_cycles: removed %s" % o.name)
+        bpy.data.objects.remove(o, do_unlink=True)
 
 world_color(scene, (0.0, 0.0, 0.0))
 
@@ -72,8 +81,8 @@ for mat in bpy.data.materials:
 
 image_size(scene, size)
 exr = out_pfm + ".exr"
-cycles_settings(scene, spp, exr, max_bounces=50, seed=seed)
-scene.cycles.diffuse_bounces = 50
+cycles_settings(scene, spp, exr, max_bounces=max_bounces, seed=seed)
+scene.cycles.diffuse_bounces = max_bounces
 scene.cycles.sample_clamp_direct = 0.0
 scene.cycles.sample_clamp_indirect = 0.0
 scene.cycles.pixel_filter_type = "BOX"
