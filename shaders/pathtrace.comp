@@ -48,7 +48,7 @@ struct PathState {
     uint depth;       // rays traced along the path so far (camera ray = 1)
     SampleStream smp; // this sample's random numbers (shared/sample_stream.h: sequence, dimension layout)
     bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
-    vec3 prevX;          // mis: the diffuse vertex the current ray left from
+    vec3 prevX;          // mis: the origin of the current ray (a diffuse vertex moved off its surface)
     vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it; 0 in a medium)
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
@@ -156,7 +156,6 @@ bool scatter(inout PathState s, Bsdf b, vec3 x, vec3 xo, uint prim, SurfaceHit h
         if (nee) {
             // `light` ignores the light this sample finds (already counted), `mis` weights it.
             s.countEmission = neeWeighted(b);
-            s.prevX = x;
             s.prevN = b.n;  // 0 in a medium (lib/environment.glsl pdfEnv)
             s.prevBsdfPdf = pdf;
         }
@@ -164,6 +163,13 @@ bool scatter(inout PathState s, Bsdf b, vec3 x, vec3 xo, uint prim, SurfaceHit h
     // A refracted ray leaves on the other side: into the glass through its front, out through its back.
     bool refracted = HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f);
     s.o = refracted ? spawnFrom(h, -h.ns) : xo;
+    // A light this ray finds is weighed against next-event estimation's density for its direction
+    // from where the ray starts, not from x: seen from the offset origin the light is a little
+    // larger, and in that sliver of directions the density from x is 0, which gave those rays
+    // weight 1 (a bias of about twice the offset over the distance: +0.035 % on the empty Cornell
+    // room's back wall, docs/accuracy.md "the Cornell box's walls"); from the origin they get the
+    // BSDF's weight, as their neighbours do.
+    s.prevX = s.o;
     if (HAS_ABSORPTION && refracted) s.sigma = h.frontFace ? vec3(h.m.m2.x, h.m.m2.y, h.m.m2.z) : vec3(0.0f);
     s.d = dir;
 
