@@ -48,7 +48,6 @@ struct PathState {
     uint depth;       // rays traced along the path so far (camera ray = 1)
     SampleStream smp; // this sample's random numbers (shared/sample_stream.h: sequence, dimension layout)
     bool countEmission;  // false right after a diffuse vertex that did next-event estimation (light)
-    vec3 prevX;          // mis: the origin of the current ray (a diffuse vertex moved off its surface)
     vec3 prevN;          // mis: its normal (facing the ray that reached it; pdfEnv needs it; 0 in a medium)
     float prevBsdfPdf;   // mis: solid-angle pdf of the BSDF sample that made the current ray; 0 after
                          // the camera or a specular bounce (emission then counts fully)
@@ -91,7 +90,6 @@ PathState startPath(uvec2 pix, uint pixel, uint sampleIndex) {
     s.radiance = vec3(0.0f);
     s.depth = 0u;
     s.countEmission = true;
-    s.prevX = s.o;
     s.prevN = vec3(0.0f, 0.0f, 1.0f);
     s.prevBsdfPdf = 0.0f;
     s.sigma = vec3(0.0f);
@@ -163,13 +161,6 @@ bool scatter(inout PathState s, Bsdf b, vec3 x, vec3 xo, uint prim, SurfaceHit h
     // A refracted ray leaves on the other side: into the glass through its front, out through its back.
     bool refracted = HAS_DIELECTRIC && b.type == MAT_DIELECTRIC && !(dot(dir, h.ns) > 0.0f);
     s.o = refracted ? spawnFrom(h, -h.ns) : xo;
-    // A light this ray finds is weighed against next-event estimation's density for its direction
-    // from where the ray starts, not from x: seen from the offset origin the light is a little
-    // larger, and in that sliver of directions the density from x is 0, which gave those rays
-    // weight 1 (a bias of about twice the offset over the distance: +0.035 % on the empty Cornell
-    // room's back wall, docs/accuracy.md "the Cornell box's walls"); from the origin they get the
-    // BSDF's weight, as their neighbours do.
-    s.prevX = s.o;
     if (HAS_ABSORPTION && refracted) s.sigma = h.frontFace ? vec3(h.m.m2.x, h.m.m2.y, h.m.m2.z) : vec3(0.0f);
     s.d = dir;
 
@@ -218,9 +209,13 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
     // constant density, absorbing only): the fraction exp(-sigma t) of the light is left.
     if (HAS_ABSORPTION) s.throughput *= exp(-s.sigma * distance(s.o, h.x));
     // The light this ray found, weighted against the light sample that could have found it from
-    // the previous vertex.
+    // the previous vertex: its density from where this ray started (s.o), not from the vertex
+    // itself. Seen from the offset origin the light is a little larger, and in that sliver the
+    // density from the vertex is 0, which gave those rays weight 1 (a bias of about twice the
+    // offset over the distance: +0.035 % on the empty Cornell room's back wall, docs/accuracy.md
+    // "the Cornell box's walls"); from the origin they get the BSDF's weight, as their neighbours do.
     if (HAS_EMITTERS && s.countEmission)
-        s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.prevX, s.d);
+        s.radiance += s.throughput * emitted(h.m, s.d, h.ng) * foundLightWeight(s.prevBsdfPdf, h.p, s.o, s.d);
     if (HAS_EMITTERS && (floatBitsToUint(h.m.m0.w) & MAT_TYPE_MASK) == MAT_DIFFUSE_LIGHT) {  // lights do not scatter
         if (HAS_AOV && !s.aovDone) aovEnd(s, emitted(h.m, s.d, h.ng), h.ns);
         return true;

@@ -50,8 +50,8 @@ struct DenoiseOptions {
     float sigmaNormal = 16.0f;
     /// A mean normal shorter than this has no direction to trust: its pixel's samples found
     /// surfaces facing many ways or mostly none (the inside of a glass sphere full of fog, seen
-    /// through its refraction), so the unit vector made from it is noise, and at sigmaNormal 128 (SVGF's)
-    /// any two such pixels would never mix. Such a pixel is filtered as one without a normal
+    /// through its refraction), so the unit vector made from it is noise, and at SVGF's
+    /// sigmaNormal 128 any two such pixels would never mix. Such a pixel is filtered as one without a normal
     /// (alike with others of its kind, never mixed with pixels that have one).
     float minNormalLength = 0.5f;
     /// A mean normal of n samples that disagree (an edge, a corner, depth of field, fog) is itself

@@ -85,13 +85,14 @@ float emitterHitPdf(GpuPrim p, vec3 x, vec3 d) {
 }
 
 /// MIS weight of an emitter that a ray sampled from a BSDF with density prevBsdfPdf found (0: the
-/// camera ray or a delta lobe, counted fully), lightPdf the density with which next-event
-/// estimation would have sampled it (emitterHitPdf). 1 for the samplers without next-event
-/// estimation. The `light` sampler needs it only where a glossy BSDF occurs (VKP_HAS_GLOSSY_BSDF).
-float foundLightWeight(float prevBsdfPdf, GpuPrim p, vec3 prevX, vec3 d) {
+/// camera ray or a delta lobe, counted fully), rayOrigin that ray's origin (the vertex moved off
+/// its surface: the density is taken from there, shaders/pathtrace.comp), lightPdf the density
+/// with which next-event estimation would have sampled it (emitterHitPdf). 1 for the samplers
+/// without next-event estimation. The `light` sampler needs it only where a glossy BSDF occurs (VKP_HAS_GLOSSY_BSDF).
+float foundLightWeight(float prevBsdfPdf, GpuPrim p, vec3 rayOrigin, vec3 d) {
     bool weighted = SAMPLER == SAMPLER_MIS || (SAMPLER == SAMPLER_LIGHT && VKP_HAS_GLOSSY_BSDF);
     if (!weighted || !(prevBsdfPdf > 0.0f) || primLight(p) < 0) return 1.0f;
-    return powerHeuristic(prevBsdfPdf, emitterHitPdf(p, prevX, d));
+    return powerHeuristic(prevBsdfPdf, emitterHitPdf(p, rayOrigin, d));
 }
 
 #endif

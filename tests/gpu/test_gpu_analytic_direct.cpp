@@ -144,7 +144,6 @@ TEST(GpuAnalytic, PlaneUnderThreeLightsEveryPickAndLightSampling) {
             }
 }
 
-
 /// cornell-classic.json's room and light without its boxes, direct light only (max_depth 2), seen
 /// by `camera` (the JSON camera object's members).
 Scene emptyCornellRoom(const std::string& camera) {
@@ -178,7 +177,6 @@ TEST(GpuAnalytic, EmptyCornellRoomWallsSeeTheLightEdgeOn) {
     VKP_REQUIRE_DEVICE(dev);
     constexpr std::uint32_t kSize = 32;
     Scene scene = emptyCornellRoom(R"("lookfrom": [278, 278, -800], "lookat": [278, 278, 0], "vup": [0, 1, 0], "vfov": 40, "width": 32, "height": 32)");
-    const std::vector<glm::dvec3>& light = kRoomLight;
     struct Surface {
         const char* name;
         int axis;      // the plane coordinate axis ...
@@ -206,9 +204,10 @@ TEST(GpuAnalytic, EmptyCornellRoomWallsSeeTheLightEdgeOn) {
             if (t > t0 && t < tBest) tBest = t, best = k;
         }
         x = o + tBest * d;
-        const double tl = (554.0 - o.y) / d.y;  // the light, seen from below
+        const glm::dvec3 lo = kRoomLight[0], hi = kRoomLight[2];  // the light's corners, at height lo.y
+        const double tl = (lo.y - o.y) / d.y;                        // seen from below
         const glm::dvec3 xl = o + tl * d;
-        if (tl > t0 && tl < tBest && xl.x >= 213 && xl.x <= 343 && xl.z >= 227 && xl.z <= 332) return -1;
+        if (tl > t0 && tl < tBest && xl.x >= lo.x && xl.x <= hi.x && xl.z >= lo.z && xl.z <= hi.z) return -1;
         return best;
     };
     std::vector<std::vector<Pixel>> pixelsOf(5);
@@ -226,7 +225,7 @@ TEST(GpuAnalytic, EmptyCornellRoomWallsSeeTheLightEdgeOn) {
                 for (int b = 0; b < 8; ++b) {
                     surfaceHit(i + kGlX[a], j + kGlX[b], x);
                     // The light faces down: points above its plane (the ceiling) see its back.
-                    if (x.y < 554.0) sum += kGlW[a] * kGlW[b] * 15.0 * polygonIrradiance(x, surfaces[k].n, light);
+                    if (x.y < kRoomLight[0].y) sum += kGlW[a] * kGlW[b] * 15.0 * polygonIrradiance(x, surfaces[k].n, kRoomLight);
                 }
             expected[j * kSize + i] = sum / kPi;
             pixelsOf[std::size_t(k)].push_back({i, j});
@@ -253,7 +252,7 @@ TEST(GpuAnalytic, EmptyCornellRoomWallsSeeTheLightEdgeOn) {
 // A BSDF-sampled ray leaves a diffuse vertex x from a point moved off the surface (shared/ray_offset.h:
 // 256 ulps of each coordinate, relative to the camera), from where the light looks a little larger.
 // The light it finds is weighed against next-event estimation's density for its direction from
-// that origin (shaders/pathtrace.comp prevX); from x, the density of that sliver of directions is 0
+// that origin (shaders/pathtrace.comp, foundLightWeight); from x, the density of that sliver of directions is 0
 // and their weight was 1: a bias of about twice the offset over the distance to the light. Seen
 // from 1e5 units away, a point high on the empty room's back wall is offset by ~2 units, 300 from
 // the light: `mis` read 3.3 % too bright there (12 standard errors; 0.035 % seen from the box's own
