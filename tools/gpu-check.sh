@@ -28,7 +28,8 @@
 # summary.json: {"device": ..., "tests": {"binaries", "passed", "failed", "failures": [...],
 # "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
 # "rays_per_second_steady", "seconds_to_first_sample", "seconds_longest_dispatch",
-# "samples_per_dispatch", "nonfinite_samples", "pipeline_cache_bytes_loaded"}, ...], "seconds": total}. The
+# "samples_per_dispatch", "nonfinite_samples", "pipeline_cache_bytes_loaded", "staging_copies"}, ...],
+# "seconds": total}. The
 # exit status is 0 only when every test binary passed and every render succeeded (the dense mesh
 # missing counts as a failed render).
 set -uo pipefail
@@ -141,7 +142,8 @@ if [ "$run_bench" = 1 ]; then
       s=$out/$name.json
       entry="{\"scene\": $(json_str "$scene"), \"size\": \"${size}x$size\", \"seconds\": $seconds"
       for k in spp rays_per_second rays_per_second_steady seconds_to_first_sample seconds_longest_dispatch \
-               samples_per_dispatch workgroup nonfinite_samples loop_guard_paths pipeline_cache_bytes_loaded; do
+               samples_per_dispatch workgroup nonfinite_samples loop_guard_paths pipeline_cache_bytes_loaded \
+               staging_copies; do
         entry+=", \"$k\": $(json_field "$s" "$k")"
       done
       entry+="}"

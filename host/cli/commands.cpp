@@ -280,6 +280,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
         st.secondsSetup = secondsSetup;
         st.secondsUpload = secondsUpload;
         st.sceneBufferBytes = renderer.sceneBufferBytes();
+        st.stagingCopies = device.stagingCopies();
         rusage ru{};
         if (getrusage(RUSAGE_SELF, &ru) == 0) st.peakRssBytes = std::uint64_t(ru.ru_maxrss) * 1024u;  // Linux: KiB
         st.hugePages = hugePagesRequested();

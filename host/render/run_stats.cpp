@@ -178,6 +178,7 @@ std::string runStatsJson(const RunStats& s) {
     w.raw("spatial_splits", s.spatialSplits ? "true" : "false");
     w.raw("bvh_primitives", num(s.bvhPrimitives));
     w.raw("scene_buffer_bytes", num(s.sceneBufferBytes));
+    w.raw("staging_copies", num(s.stagingCopies));
     if (s.kernelCache) {
         std::ostringstream c;
         ObjectWriter cw(c, 2);

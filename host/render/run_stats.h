@@ -54,6 +54,7 @@ struct RunStats {
     bool spatialSplits = false;          ///< built with spatial splits (--spatial-splits, host/bvh/sbvh.h)
     std::uint64_t bvhPrimitives = 0;     ///< primitives on the device: one per reference (instances included)
     std::uint64_t sceneBufferBytes = 0;  ///< the scene's device buffers (Renderer::sceneBufferBytes)
+    std::uint64_t stagingCopies = 0;     ///< transfers through staging buffers (VulkanDevice::stagingCopies)
     /// The kernel cache (core/disk_cache.h), if the render used one: its folder and what it did.
     struct KernelCache {
         std::string dir;

@@ -1,6 +1,11 @@
 #include "vk/buffer.h"
 
 #include <cstring>
+#include <optional>
+#include <string>
+
+#include "core/errors.h"
+#include "vk/memory_choice.h"
 
 namespace vkp {
 
@@ -12,6 +17,19 @@ struct Staging {
     vk::raii::DeviceMemory memory{nullptr};
     void* mapped = nullptr;
 };
+
+constexpr vk::AccessFlags kWrites = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferWrite;
+constexpr vk::AccessFlags kReads = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead;
+constexpr vk::PipelineStageFlags kDeviceStages = vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer;
+
+/// A global memory barrier: what src stages wrote with srcAccess is made visible to dst stages' dstAccess.
+void barrier(vk::raii::CommandBuffer& cmd, vk::AccessFlags srcAccess, vk::AccessFlags dstAccess, vk::PipelineStageFlags src,
+             vk::PipelineStageFlags dst) {
+    vk::MemoryBarrier mb{};
+    mb.srcAccessMask = srcAccess;
+    mb.dstAccessMask = dstAccess;
+    cmd.pipelineBarrier(src, dst, {}, mb, nullptr, nullptr);
+}
 
 Staging makeStaging(VulkanDevice& dev, vk::DeviceSize size) {
     Staging s;
@@ -39,20 +57,17 @@ GpuBuffer::GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlag
     bci.usage = usage | kTransfer;
     buffer_ = vk::raii::Buffer(dev.device(), bci);
     const auto req = buffer_.getMemoryRequirements();
-    // Device-local, and host-visible+coherent as well where such memory exists.
-    const auto devLocal = vk::MemoryPropertyFlagBits::eDeviceLocal;
-    const auto hostVis = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
-    std::uint32_t type = dev.memoryType(req.memoryTypeBits, devLocal, hostVis);
+    const std::optional<BufferMemoryChoice> choice = chooseBufferMemory(dev.memoryProperties(), req.memoryTypeBits, dev.mapsBuffers());
+    if (!choice) throw VulkanError("no Vulkan memory type can hold a buffer of " + std::to_string(size_) + " bytes");
     vk::MemoryAllocateInfo mai{};
     mai.allocationSize = req.size;
-    mai.memoryTypeIndex = type;
+    mai.memoryTypeIndex = choice->type;
     vk::MemoryAllocateFlagsInfo flags{};
     flags.flags = vk::MemoryAllocateFlagBits::eDeviceAddress;
     if (usage & vk::BufferUsageFlagBits::eShaderDeviceAddress) mai.pNext = &flags;
     memory_ = vk::raii::DeviceMemory(dev.device(), mai);
     buffer_.bindMemory(*memory_, 0);
-    const auto props = dev.physical().getMemoryProperties().memoryTypes[type].propertyFlags;
-    if ((props & hostVis) == hostVis) mapped_ = memory_.mapMemory(0, size_);
+    if (choice->mapped) mapped_ = memory_.mapMemory(0, size_);
 }
 
 void GpuBuffer::upload(const void* data, std::size_t bytes) {
@@ -62,8 +77,15 @@ void GpuBuffer::upload(const void* data, std::size_t bytes) {
         return;
     }
     Staging s = makeStaging(*dev_, bytes);
+    dev_->countStagingCopy();
     std::memcpy(s.mapped, data, bytes);
-    dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) { cmd.copyBuffer(*s.buffer, *buffer_, vk::BufferCopy{0, 0, bytes}); });
+    dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
+        // Earlier work on the buffer (a dispatch, a fill) is done before the copy overwrites it ...
+        barrier(cmd, kWrites, vk::AccessFlagBits::eTransferWrite, kDeviceStages, vk::PipelineStageFlagBits::eTransfer);
+        cmd.copyBuffer(*s.buffer, *buffer_, vk::BufferCopy{0, 0, bytes});
+        // ... and the copy's data is visible to every later command (later submissions included).
+        barrier(cmd, vk::AccessFlagBits::eTransferWrite, kWrites | kReads, vk::PipelineStageFlagBits::eTransfer, kDeviceStages);
+    });
 }
 
 void GpuBuffer::download(void* dst, std::size_t bytes) {
@@ -73,7 +95,14 @@ void GpuBuffer::download(void* dst, std::size_t bytes) {
         return;
     }
     Staging s = makeStaging(*dev_, bytes);
-    dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) { cmd.copyBuffer(*buffer_, *s.buffer, vk::BufferCopy{0, 0, bytes}); });
+    dev_->countStagingCopy();
+    dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
+        barrier(cmd, kWrites, vk::AccessFlagBits::eTransferRead, kDeviceStages, vk::PipelineStageFlagBits::eTransfer);
+        cmd.copyBuffer(*buffer_, *s.buffer, vk::BufferCopy{0, 0, bytes});
+        // The copy's writes made visible to the host's reads below (after the fence).
+        barrier(cmd, vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead, vk::PipelineStageFlagBits::eTransfer,
+                vk::PipelineStageFlagBits::eHost);
+    });
     std::memcpy(dst, s.mapped, bytes);
 }
 

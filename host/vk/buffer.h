@@ -1,6 +1,7 @@
 // A Vulkan buffer with its own memory (both RAII). Device-local where the device has it; data moves
-// through a mapping when that memory is also host-visible (lavapipe, integrated GPUs), otherwise
-// through a temporary staging buffer.
+// through a mapping when that memory is also host-visible, coherent and cached (lavapipe, integrated
+// GPUs), otherwise through a temporary staging buffer (discrete GPUs; VKPATH_NO_BUFFER_MAPPING=1 on
+// any device): vk/memory_choice.h, docs/design.md "Buffer memory".
 #pragma once
 #include <cstddef>
 

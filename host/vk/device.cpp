@@ -1,5 +1,6 @@
 #include "vk/device.h"
 
+#include <cstdlib>
 #include <cstring>
 
 #include "core/disk_cache.h"
@@ -16,6 +17,7 @@ VulkanDevice::VulkanDevice(VulkanInstance& instance, const std::string& selector
     physical_ = &instance.physicalDevice(*choice.index);
     info_ = instance.devices()[*choice.index];
     memProps_ = physical_->getMemoryProperties();
+    if (const char* noMap = std::getenv("VKPATH_NO_BUFFER_MAPPING")) mapsBuffers_ = std::string(noMap).empty() || std::string(noMap) == "0";
 
     const float priority = 1.0f;
     vk::DeviceQueueCreateInfo qci{};

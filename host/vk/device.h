@@ -30,6 +30,17 @@ public:
     std::uint32_t memoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags required,
                              vk::MemoryPropertyFlags preferred = {}) const;
 
+    /// The device's memory types and heaps (vk/memory_choice.h picks a buffer's type from them).
+    const vk::PhysicalDeviceMemoryProperties& memoryProperties() const { return memProps_; }
+    /// Whether buffers in host-visible, coherent, cached device-local memory are mapped (the
+    /// default) or, with VKPATH_NO_BUFFER_MAPPING=1 in the environment, reached through staging
+    /// copies as on a discrete GPU: the tests run that path on lavapipe (docs/design.md "Buffer memory").
+    bool mapsBuffers() const { return mapsBuffers_; }
+    /// Uploads and read-backs that went through a staging buffer so far (GpuBuffer): 0 where every
+    /// buffer is mapped (lavapipe), one or more per transfer on a discrete GPU (`--stats-json`'s staging_copies).
+    std::uint64_t stagingCopies() const { return stagingCopies_; }
+    void countStagingCopy() { ++stagingCopies_; }
+
     /// The compute pipelines compiled on this device, by what they were built from
     /// (vk/compute_pipeline.h): a ComputePipeline of the same SPIR-V, specialization constants,
     /// bindings and push-constant size as an earlier one reuses its VkPipeline.
@@ -62,6 +73,8 @@ private:
     vk::raii::CommandBuffer cmd_{nullptr};
     vk::raii::Fence fence_{nullptr};
     vk::PhysicalDeviceMemoryProperties memProps_{};
+    bool mapsBuffers_ = true;
+    std::uint64_t stagingCopies_ = 0;
     std::shared_ptr<CompiledPipelines> compiled_;  // declared after device_: destroyed before it
     std::shared_ptr<DiskCache> kernelCache_;
     vk::raii::PipelineCache pipelineCache_{nullptr};  // after device_: destroyed before it

@@ -74,6 +74,8 @@ def main():
             fail("%s: implausible figures %r" % (b["scene"], b))
         if b["nonfinite_samples"] != 0 or b["loop_guard_paths"] != 0:
             fail("%s: non-finite samples or cut paths %r" % (b["scene"], b))
+        if not isinstance(b.get("staging_copies"), int) or b["staging_copies"] < 0:
+            fail("%s: no staging_copies count %r" % (b["scene"], b))
     print("test_gpu_check: %d scenes on %s" % (len(names), s["device"]["name"]))
 
 
