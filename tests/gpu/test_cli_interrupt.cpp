@@ -22,11 +22,6 @@ namespace vkp::test {
 namespace {
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// Files in `dir` left by an atomic write: ".<name>.tmp-*".
 int temporaryFiles(const fs::path& dir) {
     int n = 0;
@@ -98,10 +93,10 @@ TEST_P(CliResume, SigintThenResumeIsBitIdentical) {
     ASSERT_GT(k, 0u) << r.err;
     std::printf("interrupted at sample %u\n", k);
     EXPECT_EQ(temporaryFiles(dir), 0);
-    const std::string stopped = slurp(dir / "stopped.exr");
+    const std::string stopped = fileBytes(dir / "stopped.exr");
     EXPECT_NE(stopped.find("vkpath.interrupted"), std::string::npos);
     EXPECT_NE(stopped.find("0:" + std::to_string(k)), std::string::npos) << "the samples reached are in the file's metadata";
-    EXPECT_NE(slurp(dir / "stopped.png").find("tEXtvkpath.spp"), std::string::npos);
+    EXPECT_NE(fileBytes(dir / "stopped.png").find("tEXtvkpath.spp"), std::string::npos);
 
     auto with = [&](std::vector<std::string> more) {
         std::vector<std::string> a = mode;
@@ -114,7 +109,7 @@ TEST_P(CliResume, SigintThenResumeIsBitIdentical) {
     ASSERT_EQ(res.exitCode, 0) << res.err;
     res = run(with({"--spp", total, "-o", "straight.exr"}));
     ASSERT_EQ(res.exitCode, 0) << res.err;
-    const std::string resumed = slurp(dir / "resumed.exr"), straight = slurp(dir / "straight.exr");
+    const std::string resumed = fileBytes(dir / "resumed.exr"), straight = fileBytes(dir / "straight.exr");
     ASSERT_FALSE(straight.empty());
     EXPECT_TRUE(resumed == straight) << "resumed.exr and straight.exr differ";
     EXPECT_TRUE(litAndNotConstant(readImage(dir / "straight.exr"), "straight.exr"));
@@ -169,7 +164,7 @@ TEST_F(CliInterrupt, SampleRangesMergeToTheSingleRender) {
     ProcessResult r = run({"merge", "p2.exr", "p0.exr", "p1.exr", "-o", "merged.exr", "-o", "merged.png"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ASSERT_EQ(run({"merge", "p1.exr", "p2.exr", "p0.exr", "-o", "again.exr", "--quiet"}).exitCode, 0);
-    EXPECT_EQ(slurp(dir / "merged.exr"), slurp(dir / "again.exr"));
+    EXPECT_EQ(fileBytes(dir / "merged.exr"), fileBytes(dir / "again.exr"));
     const Image merged = readImage(dir / "merged.exr"), single = readImage(dir / "single.exr");
     ASSERT_TRUE(litAndNotConstant(single, "single.exr"));
     double worst = 0.0;
@@ -272,7 +267,7 @@ TEST_F(CliInterrupt, DeviceLostKeepsTheLastCheckpoint) {
     ASSERT_TRUE(fs::exists(dir / "ck.exr"));
     ASSERT_EQ(run(render({"--spp", "40", "--resume", "ck.exr", "-o", "resumed.exr", "--quiet"})).exitCode, 0);
     ASSERT_EQ(run(render({"--spp", "40", "-o", "straight.exr", "--quiet"})).exitCode, 0);
-    EXPECT_TRUE(slurp(dir / "resumed.exr") == slurp(dir / "straight.exr"));
+    EXPECT_TRUE(fileBytes(dir / "resumed.exr") == fileBytes(dir / "straight.exr"));
 }
 
 // Checked before rendering (defect 7 of issue 15): a --dump-dir that is a file, exit 1 at once.

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -19,11 +18,6 @@
 namespace vkp::test {
 namespace {
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 struct CliStaging : ::testing::Test {
     fs::path dir;
@@ -48,7 +42,7 @@ struct CliStaging : ::testing::Test {
     }
     /// The two files exist, are not empty and are equal byte for byte.
     void expectSameFile(const std::string& a, const std::string& b) {
-        const std::string x = slurp(dir / a), y = slurp(dir / b);
+        const std::string x = fileBytes(dir / a), y = fileBytes(dir / b);
         ASSERT_FALSE(x.empty()) << a;
         EXPECT_TRUE(x == y) << a << " and " << b << " differ";
     }

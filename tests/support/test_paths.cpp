@@ -1,6 +1,8 @@
 #include "test_paths.h"
 
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace vkp::test {
@@ -27,6 +29,11 @@ std::filesystem::path scratchDir(const std::string& testName) {
     dir /= testName;
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+std::string fileBytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace vkp::test

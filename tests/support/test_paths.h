@@ -12,4 +12,6 @@ std::filesystem::path vkpathBinary();     ///< the built vkpath executable ($VKP
 /// A fresh-or-existing scratch folder for one test, created: <build tree>/test-scratch/<name>, or
 /// $VKPATH_TEST_TMP/vkpath-tests/<name> when that variable is set.
 std::filesystem::path scratchDir(const std::string& testName);
+/// The whole content of a file (empty if it cannot be read): for byte-for-byte comparisons.
+std::string fileBytes(const std::filesystem::path& path);
 }  // namespace vkp::test

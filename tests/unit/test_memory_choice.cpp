@@ -39,17 +39,22 @@ vk::PhysicalDeviceMemoryProperties layout(std::initializer_list<std::pair<vk::De
 
 constexpr std::uint32_t kAll = 0xffffffffu;
 
+/// chooseBufferMemory(p, typeBits, allowMapping) picks `type`, mapped or not.
+::testing::AssertionResult chooses(const vk::PhysicalDeviceMemoryProperties& p, std::uint32_t typeBits, bool allowMapping,
+                                   std::uint32_t type, bool mapped) {
+    const auto c = chooseBufferMemory(p, typeBits, allowMapping);
+    if (!c) return ::testing::AssertionFailure() << "no type chosen";
+    if (c->type != type || c->mapped != mapped)
+        return ::testing::AssertionFailure() << "type " << c->type << (c->mapped ? " mapped" : " unmapped") << ", expected " << type
+                                             << (mapped ? " mapped" : " unmapped");
+    return ::testing::AssertionSuccess();
+}
+
 TEST(MemoryChoice, LavapipeMapsItsOneUnifiedType) {
     const auto p = layout({{2 * GiB, true}}, {{DL | HV | HC | CA, 0}});
-    const auto c = chooseBufferMemory(p, kAll, true);
-    ASSERT_TRUE(c);
-    EXPECT_EQ(c->type, 0u);
-    EXPECT_TRUE(c->mapped);
+    EXPECT_TRUE(chooses(p, kAll, true, 0u, true));
     // VKPATH_NO_BUFFER_MAPPING: the same memory, reached through staging copies.
-    const auto u = chooseBufferMemory(p, kAll, false);
-    ASSERT_TRUE(u);
-    EXPECT_EQ(u->type, 0u);
-    EXPECT_FALSE(u->mapped);
+    EXPECT_TRUE(chooses(p, kAll, false, 0u, false));
 }
 
 // NVIDIA without resizable BAR: the host-visible device-local window is a 246 MB heap of its own.
@@ -58,65 +63,38 @@ TEST(MemoryChoice, LavapipeMapsItsOneUnifiedType) {
 TEST(MemoryChoice, DiscreteGpuLeavesTheSmallBarWindowAlone) {
     const auto p = layout({{8 * GiB, true}, {16 * GiB, false}, {246 * MiB, true}},
                           {{Flags{}, 1}, {DL, 0}, {HV | HC, 1}, {HV | HC | CA, 1}, {DL | HV | HC, 2}});
-    for (bool allow : {true, false}) {
-        const auto c = chooseBufferMemory(p, kAll, allow);
-        ASSERT_TRUE(c);
-        EXPECT_EQ(c->type, 1u);
-        EXPECT_FALSE(c->mapped);
-    }
+    for (bool allow : {true, false}) EXPECT_TRUE(chooses(p, kAll, allow, 1u, false));
     // Only the window allowed by the buffer's requirements: device-local still, through staging.
-    const auto w = chooseBufferMemory(p, (1u << 2) | (1u << 4), true);
-    ASSERT_TRUE(w);
-    EXPECT_EQ(w->type, 4u);
-    EXPECT_FALSE(w->mapped);
+    EXPECT_TRUE(chooses(p, (1u << 2) | (1u << 4), true, 4u, false));
 }
 
 // AMD with resizable BAR (Smart Access Memory): all of VRAM is host-visible, but uncached.
 TEST(MemoryChoice, ResizableBarIsNotMappedForReading) {
     const auto p = layout({{16 * GiB, true}, {32 * GiB, false}}, {{DL, 0}, {HV | HC, 1}, {DL | HV | HC, 0}, {HV | HC | CA, 1}});
-    const auto c = chooseBufferMemory(p, kAll, true);
-    ASSERT_TRUE(c);
-    EXPECT_EQ(c->type, 0u);
-    EXPECT_FALSE(c->mapped);
+    EXPECT_TRUE(chooses(p, kAll, true, 0u, false));
 }
 
 // Intel's integrated GPUs share system memory: the cached, coherent device-local type is mapped.
 TEST(MemoryChoice, IntegratedGpuMapsItsCachedCoherentType) {
     const auto p = layout({{12 * GiB, true}}, {{DL, 0}, {DL | HV | HC, 0}, {DL | HV | HC | CA, 0}});
-    const auto c = chooseBufferMemory(p, kAll, true);
-    ASSERT_TRUE(c);
-    EXPECT_EQ(c->type, 2u);
-    EXPECT_TRUE(c->mapped);
-    const auto u = chooseBufferMemory(p, kAll, false);
-    ASSERT_TRUE(u);
-    EXPECT_EQ(u->type, 0u);  // device-local without host visibility exists: the staging path uses it
-    EXPECT_FALSE(u->mapped);
+    EXPECT_TRUE(chooses(p, kAll, true, 2u, true));
+    EXPECT_TRUE(chooses(p, kAll, false, 0u, false));  // device-local without host visibility exists: the staging path uses it
     // Cached but not coherent: never mapped (vkpath does not flush or invalidate ranges).
     const auto nc = layout({{4 * GiB, true}}, {{DL | HV | CA, 0}});
-    const auto n = chooseBufferMemory(nc, kAll, true);
-    ASSERT_TRUE(n);
-    EXPECT_FALSE(n->mapped);
+    EXPECT_TRUE(chooses(nc, kAll, true, 0u, false));
 }
 
 TEST(MemoryChoice, LargestHeapAmongEqualTypesThenLowestIndex) {
     const auto p = layout({{1 * GiB, true}, {8 * GiB, true}}, {{DL, 0}, {DL, 1}, {DL, 1}});
-    const auto c = chooseBufferMemory(p, kAll, true);
-    ASSERT_TRUE(c);
-    EXPECT_EQ(c->type, 1u);
+    EXPECT_TRUE(chooses(p, kAll, true, 1u, false));
 }
 
 TEST(MemoryChoice, WithoutDeviceLocalMemoryAnyAdmittedType) {
     const auto p = layout({{4 * GiB, false}}, {{HV | HC, 0}, {HV | HC | CA, 0}});
-    const auto c = chooseBufferMemory(p, 1u << 1, true);
-    ASSERT_TRUE(c);
-    EXPECT_EQ(c->type, 1u);
-    EXPECT_TRUE(c->mapped);
-    const auto d = chooseBufferMemory(p, 1u << 0, true);
-    ASSERT_TRUE(d);
-    EXPECT_EQ(d->type, 0u);
-    EXPECT_FALSE(d->mapped);  // uncached: staging copies
-    EXPECT_FALSE(chooseBufferMemory(p, 0u, true));             // nothing admitted
-    EXPECT_FALSE(chooseBufferMemory(p, 1u << 5, true));        // bits beyond the type count
+    EXPECT_TRUE(chooses(p, 1u << 1, true, 1u, true));
+    EXPECT_TRUE(chooses(p, 1u << 0, true, 0u, false));  // uncached: staging copies
+    EXPECT_FALSE(chooseBufferMemory(p, 0u, true));       // nothing admitted
+    EXPECT_FALSE(chooseBufferMemory(p, 1u << 5, true));  // bits beyond the type count
 }
 
 }  // namespace
