@@ -437,10 +437,11 @@ int runDevices(const CliArgs& a) {
     const DeviceChoice def = selectDevice(devs, a.device);
     for (const DeviceInfo& d : devs) {
         const std::string why = unusableReason(d);
-        std::printf("%u%s %s\n    type %s, driver %s%s%s, Vulkan %s, subgroups of %u lanes%s\n", d.index,
+        std::printf("%u%s %s\n    type %s, driver %s%s%s, Vulkan %s, subgroups of %u lanes, %s%s\n", d.index,
                     def.index && *def.index == d.index ? " (default)" : "", d.name.c_str(), kindName(d.kind),
                     d.driverName.empty() ? "?" : d.driverName.c_str(), d.driverInfo.empty() ? "" : " / ",
                     d.driverInfo.c_str(), apiVersionString(d.apiVersion).c_str(), d.subgroupSize,
+                    d.mappedBuffers ? "buffers mapped (unified memory)" : "buffers through staging copies",
                     why.empty() ? "" : (", unusable: " + why).c_str());
     }
     return def.index ? kExitOk : kExitNoDevice;

@@ -29,6 +29,10 @@ struct DeviceInfo {
     std::uint32_t subgroupSize = 0;  ///< VkPhysicalDeviceSubgroupProperties::subgroupSize (0: not reported)
     std::uint64_t maxMemoryAllocationSize = 0;  ///< bytes of one allocation (Vulkan 1.1; 0: not reported)
     std::uint64_t deviceLocalBytes = 0;         ///< size of the largest device-local memory heap
+    /// Device-local memory that the host maps (host-visible, coherent, cached: unified memory, as
+    /// lavapipe's and integrated GPUs'); false: buffers are reached through staging copies
+    /// (vk/memory_choice.h, for a buffer that may take any memory type).
+    bool mappedBuffers = false;
     bool hasTexelFormat = false;  ///< R32G32B32A32_UINT usable as a uniform texel buffer
     bool bufferDeviceAddress = false;  ///< VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (optional)
     /// The compute family's timestampValidBits (0: no timestamps there) and the device's

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "vk/memory_choice.h"
 
 namespace vkp {
 
@@ -79,6 +80,7 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
     for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
         if (mem.memoryHeaps[i].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
             d.deviceLocalBytes = std::max<std::uint64_t>(d.deviceLocalBytes, mem.memoryHeaps[i].size);
+    if (const std::optional<BufferMemoryChoice> c = chooseBufferMemory(mem, ~0u, true)) d.mappedBuffers = c->mapped;
     if (props.apiVersion >= VK_API_VERSION_1_2) {
         auto chain = pd.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties,
                                        vk::PhysicalDeviceMaintenance3Properties, vk::PhysicalDeviceSubgroupProperties>();

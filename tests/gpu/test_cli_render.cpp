@@ -263,6 +263,11 @@ TEST_F(CliRender, DevicesAndBadDeviceSelection) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find(dev.info().name), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("(default)"), std::string::npos) << r.out;
+    // How the host reaches the device's buffers (docs/design.md "Buffer memory"): one of the two.
+    const bool mapped = r.out.find("buffers mapped (unified memory)") != std::string::npos;
+    const bool staged = r.out.find("buffers through staging copies") != std::string::npos;
+    EXPECT_TRUE(mapped != staged) << r.out;
+    EXPECT_EQ(mapped, dev.info().mappedBuffers) << r.out;
     r = run({"render", scene("cornell-book3.json"), "--device", "99", "-o", "never.png"});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
