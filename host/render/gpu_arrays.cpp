@@ -43,6 +43,10 @@ DeviceLimits deviceLimits(const DeviceInfo& d) {
         l.maxComputeWorkGroupSize[i] = d.maxComputeWorkGroupSize[i];
     }
     l.maxComputeWorkGroupInvocations = d.maxComputeWorkGroupInvocations;
+    l.maxPerStageDescriptorUniformBuffers = d.maxPerStageDescriptorUniformBuffers;
+    l.maxPerStageDescriptorStorageBuffers = d.maxPerStageDescriptorStorageBuffers;
+    l.maxPerStageDescriptorSampledImages = d.maxPerStageDescriptorSampledImages;
+    l.maxPerStageResources = d.maxPerStageResources;
     l.subgroupSize = d.subgroupSize;
     return l;
 }
@@ -249,6 +253,25 @@ std::string fitProblem(const GpuArrays& a, const DeviceLimits& l) {
         return "workgroup " + size(wg.x, wg.y) + " is beyond this device's limits (maxComputeWorkGroupSize " +
                size(l.maxComputeWorkGroupSize[0], l.maxComputeWorkGroupSize[1]) + ", maxComputeWorkGroupInvocations " +
                std::to_string(l.maxComputeWorkGroupInvocations) + ")";
+    // The kernel's descriptors, by kind, within what one compute stage may use (a limit of 0 was not
+    // reported and is not checked). Uniform texel buffers count against the sampled-image limit.
+    const struct {
+        std::uint32_t need, limit;
+        const char* what;
+        const char* name;
+    } descriptors[] = {
+        {kernelBindingCount(BindingKind::UniformBuffer), l.maxPerStageDescriptorUniformBuffers, "uniform buffers",
+         "maxPerStageDescriptorUniformBuffers"},
+        {kernelBindingCount(BindingKind::StorageBuffer), l.maxPerStageDescriptorStorageBuffers, "storage buffers",
+         "maxPerStageDescriptorStorageBuffers"},
+        {kernelBindingCount(BindingKind::UniformTexelBuffer), l.maxPerStageDescriptorSampledImages, "uniform texel buffers",
+         "maxPerStageDescriptorSampledImages"},
+        {std::uint32_t(std::size(kKernelBindings)), l.maxPerStageResources, "descriptors in all", "maxPerStageResources"},
+    };
+    for (const auto& d : descriptors)
+        if (d.limit && d.need > d.limit)
+            return "the path-tracing kernel binds " + std::to_string(d.need) + " " + d.what + ", more than this device's " +
+                   d.name + " = " + std::to_string(d.limit);
     // Read-only scene data: each texel buffer within maxTexelBufferElements, with the messages that
     // say which part of the scene is too large.
     const std::uint64_t texelLimit = l.maxTexelBufferElements;

@@ -39,6 +39,12 @@ struct DeviceLimits {
     std::uint32_t maxComputeWorkGroupCount[2] = {0, 0};
     std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};
     std::uint32_t maxComputeWorkGroupInvocations = 0;
+    /// Descriptors per compute stage (DeviceInfo's; 0: not checked): the kernel's bindings of each kind
+    /// (kernelBindingCount) must fit.
+    std::uint32_t maxPerStageDescriptorUniformBuffers = 0;
+    std::uint32_t maxPerStageDescriptorStorageBuffers = 0;
+    std::uint32_t maxPerStageDescriptorSampledImages = 0;
+    std::uint32_t maxPerStageResources = 0;
     std::uint32_t subgroupSize = 0;  ///< lanes of a subgroup (0: not reported): the automatic workgroup's
 };
 

@@ -55,6 +55,13 @@ constexpr bool kernelBindingsInOrder() {
 }
 static_assert(kernelBindingsInOrder(), "kKernelBindings in binding order, without gaps");
 
+/// The kernel's bindings of kind k.
+constexpr std::uint32_t kernelBindingCount(BindingKind k) {
+    std::uint32_t n = 0;
+    for (const KernelBinding& b : kKernelBindings) n += b.kind == k ? 1u : 0u;
+    return n;
+}
+
 /// The bindings that hold something per pixel (accumulation, adaptive sampling, feature images):
 /// sized by the image, one buffer of each per band of rows (render/gpu_arrays.h planBands).
 constexpr bool isPerPixelBinding(std::uint32_t binding) {

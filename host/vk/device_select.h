@@ -24,6 +24,13 @@ struct DeviceInfo {
     std::uint32_t maxStorageBufferRange = 0;  ///< bytes one storage-buffer binding may span
     std::uint32_t maxPushConstantsSize = 0;
     std::uint32_t maxComputeWorkGroupInvocations = 0;
+    /// Descriptors one compute stage may use, by kind (Vulkan guarantees at least 12 uniform
+    /// buffers, 4 storage buffers, 16 sampled images, which uniform texel buffers count against,
+    /// and 128 resources in all): checked against the kernel's bindings by fitProblem.
+    std::uint32_t maxPerStageDescriptorUniformBuffers = 0;
+    std::uint32_t maxPerStageDescriptorStorageBuffers = 0;
+    std::uint32_t maxPerStageDescriptorSampledImages = 0;
+    std::uint32_t maxPerStageResources = 0;
     std::uint32_t maxComputeWorkGroupSize[2] = {0, 0};   ///< x, y
     std::uint32_t maxComputeWorkGroupCount[2] = {0, 0};  ///< x, y
     std::uint32_t subgroupSize = 0;  ///< VkPhysicalDeviceSubgroupProperties::subgroupSize (0: not reported)

@@ -72,6 +72,10 @@ DeviceInfo describeDevice(const vk::raii::PhysicalDevice& pd, std::uint32_t inde
     d.maxStorageBufferRange = props.limits.maxStorageBufferRange;
     d.maxPushConstantsSize = props.limits.maxPushConstantsSize;
     d.maxComputeWorkGroupInvocations = props.limits.maxComputeWorkGroupInvocations;
+    d.maxPerStageDescriptorUniformBuffers = props.limits.maxPerStageDescriptorUniformBuffers;
+    d.maxPerStageDescriptorStorageBuffers = props.limits.maxPerStageDescriptorStorageBuffers;
+    d.maxPerStageDescriptorSampledImages = props.limits.maxPerStageDescriptorSampledImages;
+    d.maxPerStageResources = props.limits.maxPerStageResources;
     d.maxComputeWorkGroupSize[0] = props.limits.maxComputeWorkGroupSize[0];
     d.maxComputeWorkGroupSize[1] = props.limits.maxComputeWorkGroupSize[1];
     d.maxComputeWorkGroupCount[0] = props.limits.maxComputeWorkGroupCount[0];

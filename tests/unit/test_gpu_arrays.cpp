@@ -27,6 +27,10 @@ DeviceLimits lavapipe() {
     l.maxComputeWorkGroupCount[0] = l.maxComputeWorkGroupCount[1] = 65535;
     l.maxComputeWorkGroupSize[0] = l.maxComputeWorkGroupSize[1] = 1024;
     l.maxComputeWorkGroupInvocations = 1024;
+    l.maxPerStageDescriptorUniformBuffers = 15;
+    l.maxPerStageDescriptorStorageBuffers = 32;
+    l.maxPerStageDescriptorSampledImages = 128;
+    l.maxPerStageResources = 128;
     l.subgroupSize = 8;
     return l;
 }
@@ -187,6 +191,37 @@ TEST(GpuArrays, AWorkgroupBeyondTheDeviceIsRefused) {
     const std::string m = fitProblem(pack(sized("cornell-classic.json", 16, 16), o).arrays, lavapipe());
     expectOneLine(m);
     EXPECT_NE(m.find("workgroup 64x32 is beyond this device's limits"), std::string::npos) << m;
+}
+
+// The kernel's descriptors by kind against what one stage of the device may use. Every kind but
+// storage buffers is within what Vulkan guarantees every device (12 uniform buffers, 16 sampled
+// images, which uniform texel buffers count against, 128 resources); the 6 storage buffers are
+// above the guaranteed 4, so a device that offers fewer is refused in one line before anything runs.
+TEST(GpuArrays, DescriptorsBeyondTheStageLimitsAreRefused) {
+    EXPECT_LE(kernelBindingCount(BindingKind::UniformBuffer), 12u);
+    EXPECT_LE(kernelBindingCount(BindingKind::UniformTexelBuffer), 16u);
+    EXPECT_LE(std::size(kKernelBindings), 128u);
+    EXPECT_EQ(kernelBindingCount(BindingKind::StorageBuffer), 6u);
+    const GpuArrays a = pack(sized("cornell-classic.json", 16, 16)).arrays;
+    EXPECT_EQ(fitProblem(a, lavapipe()), "");
+    DeviceLimits l = lavapipe();
+    l.maxPerStageDescriptorStorageBuffers = 4;
+    std::string m = fitProblem(a, l);
+    expectOneLine(m);
+    EXPECT_NE(m.find("binds 6 storage buffers, more than this device's maxPerStageDescriptorStorageBuffers = 4"), std::string::npos)
+        << m;
+    l = lavapipe();
+    l.maxPerStageDescriptorSampledImages = 8;
+    m = fitProblem(a, l);
+    EXPECT_NE(m.find("11 uniform texel buffers, more than this device's maxPerStageDescriptorSampledImages = 8"),
+              std::string::npos)
+        << m;
+    l = lavapipe();
+    l.maxPerStageResources = 17;
+    EXPECT_NE(fitProblem(a, l).find("binds 18 descriptors in all"), std::string::npos);
+    l = lavapipe();
+    l.maxPerStageDescriptorStorageBuffers = 0;  // not reported: not checked
+    EXPECT_EQ(fitProblem(a, l), "");
 }
 
 TEST(GpuArrays, TexelsBeyondTheLimitAreRefusedNamingWhat) {
