@@ -37,7 +37,7 @@ public:
     /// copies as on a discrete GPU: the tests run that path on lavapipe (docs/design.md "Buffer memory").
     bool mapsBuffers() const { return mapsBuffers_; }
     /// Uploads and read-backs that went through a staging buffer so far (GpuBuffer): 0 where every
-    /// buffer is mapped (lavapipe), one or more per transfer on a discrete GPU (`--stats-json`'s staging_copies).
+    /// buffer is mapped (lavapipe), one per transfer on a discrete GPU (`--stats-json`'s staging_copies).
     std::uint64_t stagingCopies() const { return stagingCopies_; }
     void countStagingCopy() { ++stagingCopies_; }
 
