@@ -56,10 +56,11 @@ TEST_F(CliStaging, FeatureImagesAndTheDenoiserGiveTheMappedFiles) {
                                                  "--stats-json", tag + ".json"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
-    // The staging run really copied (renderer, feature images and denoiser: dozens of transfers),
-    // the mapped one never did.
-    EXPECT_EQ(stagingCopies("m.json"), 0u);
+    // The staging run really copied (renderer, feature images and denoiser: dozens of transfers);
+    // the other one did only where the device has no memory to map (a discrete GPU: both runs copy).
     EXPECT_GE(stagingCopies("s.json"), 10u);
+    if (dev.info().mappedBuffers) EXPECT_EQ(stagingCopies("m.json"), 0u);
+    else EXPECT_EQ(stagingCopies("m.json"), stagingCopies("s.json"));
     expectSameFile("m.exr", "s.exr");
     expectSameFile("m.pfm", "s.pfm");
     expectSameFile("m.denoised.pfm", "s.denoised.pfm");
