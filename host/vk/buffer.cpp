@@ -12,12 +12,6 @@ namespace vkp {
 namespace {
 constexpr auto kTransfer = vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst;
 
-struct Staging {
-    vk::raii::Buffer buffer{nullptr};
-    vk::raii::DeviceMemory memory{nullptr};
-    void* mapped = nullptr;
-};
-
 constexpr vk::AccessFlags kWrites = vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eTransferWrite;
 constexpr vk::AccessFlags kReads = vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead;
 constexpr vk::PipelineStageFlags kDeviceStages = vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eTransfer;
@@ -30,25 +24,36 @@ void barrier(vk::raii::CommandBuffer& cmd, vk::AccessFlags srcAccess, vk::Access
     mb.dstAccessMask = dstAccess;
     cmd.pipelineBarrier(src, dst, {}, mb, nullptr, nullptr);
 }
+}  // namespace
 
-Staging makeStaging(VulkanDevice& dev, vk::DeviceSize size) {
-    Staging s;
+struct GpuBuffer::Staging {
+    vk::raii::Buffer buffer{nullptr};
+    vk::raii::DeviceMemory memory{nullptr};
+    void* mapped = nullptr;
+};
+
+GpuBuffer::Staging& GpuBuffer::stagingFor(std::size_t bytes, std::unique_ptr<Staging>& temp) {
+    dev_->countStagingCopy();
+    const bool keep = size_ <= kKeptStagingBytes;
+    if (keep && kept_) return *kept_;
+    const vk::DeviceSize size = keep ? size_ : vk::DeviceSize(bytes);
+    auto s = std::make_unique<Staging>();
     vk::BufferCreateInfo bci{};
     bci.size = size;
     bci.usage = kTransfer;
-    s.buffer = vk::raii::Buffer(dev.device(), bci);
-    const auto req = s.buffer.getMemoryRequirements();
+    s->buffer = vk::raii::Buffer(dev_->device(), bci);
+    const auto req = s->buffer.getMemoryRequirements();
     vk::MemoryAllocateInfo mai{};
     mai.allocationSize = req.size;
-    mai.memoryTypeIndex = dev.memoryType(req.memoryTypeBits,
-                                         vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
-                                         vk::MemoryPropertyFlagBits::eHostCached);
-    s.memory = vk::raii::DeviceMemory(dev.device(), mai);
-    s.buffer.bindMemory(*s.memory, 0);
-    s.mapped = s.memory.mapMemory(0, size);
-    return s;
+    mai.memoryTypeIndex = dev_->memoryType(req.memoryTypeBits,
+                                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent,
+                                           vk::MemoryPropertyFlagBits::eHostCached);
+    s->memory = vk::raii::DeviceMemory(dev_->device(), mai);
+    s->buffer.bindMemory(*s->memory, 0);
+    s->mapped = s->memory.mapMemory(0, size);
+    (keep ? kept_ : temp) = std::move(s);
+    return keep ? *kept_ : *temp;
 }
-}  // namespace
 
 GpuBuffer::GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlags usage)
     : dev_(&dev), size_(size < 16 ? 16 : (size + 15) / 16 * 16) {
@@ -70,14 +75,16 @@ GpuBuffer::GpuBuffer(VulkanDevice& dev, vk::DeviceSize size, vk::BufferUsageFlag
     if (choice->mapped) mapped_ = memory_.mapMemory(0, size_);
 }
 
+GpuBuffer::~GpuBuffer() = default;
+
 void GpuBuffer::upload(const void* data, std::size_t bytes) {
     if (bytes == 0) return;
     if (mapped_) {
         std::memcpy(mapped_, data, bytes);
         return;
     }
-    Staging s = makeStaging(*dev_, bytes);
-    dev_->countStagingCopy();
+    std::unique_ptr<Staging> temp;
+    Staging& s = stagingFor(bytes, temp);
     std::memcpy(s.mapped, data, bytes);
     dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
         // Earlier work on the buffer (a dispatch, a fill) is done before the copy overwrites it ...
@@ -94,8 +101,8 @@ void GpuBuffer::download(void* dst, std::size_t bytes) {
         std::memcpy(dst, mapped_, bytes);
         return;
     }
-    Staging s = makeStaging(*dev_, bytes);
-    dev_->countStagingCopy();
+    std::unique_ptr<Staging> temp;
+    Staging& s = stagingFor(bytes, temp);
     dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
         barrier(cmd, kWrites, vk::AccessFlagBits::eTransferRead, kDeviceStages, vk::PipelineStageFlagBits::eTransfer);
         cmd.copyBuffer(*buffer_, *s.buffer, vk::BufferCopy{0, 0, bytes});
