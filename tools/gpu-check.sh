@@ -25,8 +25,9 @@
 # device or a skipped GPU test is a failure, as in CI. Every test binary and every render runs under
 # a time limit, so a hung driver cannot hold the machine.
 #
-# summary.json: {"device": ..., "tests": {"binaries", "passed", "failed", "failures": [...],
-# "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
+# summary.json: {"device": ..., "rounding": "NAME: rounds as the host (4096 probes)" or "NAME: rounds
+# otherwise than the host: ..." (tests/gpu/device_rounding.h), "tests": {"binaries", "passed",
+# "failed", "failures": [...], "seconds"}, "bench": [{"scene", "size", "seconds", "spp", "rays_per_second",
 # "rays_per_second_steady", "seconds_to_first_sample", "seconds_longest_dispatch",
 # "samples_per_dispatch", "nonfinite_samples", "pipeline_cache_bytes_loaded", "staging_copies"}, ...],
 # "seconds": total}. The
@@ -83,6 +84,17 @@ json_field() {  # the raw value of key $2 in vkpath's --stats-json file $1 (one 
 "$vkpath" devices >"$out/devices.txt" 2>&1 || status=1
 echo "gpu-check: devices:"
 sed 's/^/  /' "$out/devices.txt"
+
+# ---- How the test device rounds (tests/gpu/device_rounding.h): where it rounds as the host, the GPU
+# tests compare kernels with their C++ twins and with each other bit for bit, elsewhere up to
+# rounding; the summary's "rounding" says which (null without the test binary).
+rounding=null
+if [ -x "$build/tests/gpu/test_gpu_render" ]; then
+  timeout 300 "$build/tests/gpu/test_gpu_render" --gtest_filter=GpuRender.CpuDevicesRoundLikeTheHost >"$out/rounding.log" 2>&1
+  line=$(grep -m1 -E ': rounds (as|otherwise)' "$out/rounding.log")
+  [ -n "$line" ] && rounding=$(json_str "$line")
+  echo "gpu-check: ${line:-the rounding probe printed nothing (log: $out/rounding.log)}"
+fi
 
 # ---- The GPU tests: every gtest binary of tests/gpu, one after the other.
 tests_json='{"skipped": true}'
@@ -162,6 +174,7 @@ fi
 {
   echo "{"
   echo "  \"device\": ${device_json:-$(json_str "$(head -3 "$out/devices.txt")")},"
+  echo "  \"rounding\": $rounding,"
   echo "  \"tests\": $tests_json,"
   echo "  \"bench\": ["
   [ -n "$bench_json" ] && echo "    $bench_json"

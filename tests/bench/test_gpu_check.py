@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """CTest gpu_check_smoke: runs tools/gpu-check.sh (the script for a machine with a real GPU, issue 18)
 end to end on whatever device this machine has (lavapipe in CI), without its test part and with
-tiny renders, and checks its summary: exit status 0, "ok": true, the device named, and one entry
+tiny renders, and checks its summary: exit status 0, "ok": true, the device named, how it rounds
+(the rounding probe of tests/gpu/device_rounding.h), and one entry
 per benchmark-suite scene, the generated dense mesh included (the bench_scenes target), each with
 samples, a positive steady rays/s, a time to first sample, and no non-finite sample or cut path.
 The script runs rarely and elsewhere; this keeps it from rotting unnoticed. First it checks the
@@ -64,6 +65,8 @@ def main():
         fail("summary says not ok")
     if not isinstance(s.get("device"), dict) or not s["device"].get("name"):
         fail("summary names no device: %r" % s.get("device"))
+    if not isinstance(s.get("rounding"), str) or ": rounds " not in s["rounding"]:
+        fail("summary says nothing of how the device rounds: %r" % s.get("rounding"))
     names = [os.path.basename(b.get("scene", "")).replace(".json", "") for b in s["bench"]]
     if sorted(names) != sorted(SCENES):
         fail("scenes %s, expected %s" % (names, SCENES))

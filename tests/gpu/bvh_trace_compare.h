@@ -1,11 +1,18 @@
 // A GPU traversal kernel (shaders/tests/bvh_trace.comp, binary or 4-wide) against its CPU twin on
 // the same nodes, primitives and rays, and the scenarios both layouts are tested on
 // (tests/gpu/test_gpu_bvh.cpp, test_gpu_bvh_wide.cpp): the same closest hit (t bit-exact,
-// primitive), the same any-hit answer and the same loop-pass counts.
+// primitive), the same any-hit answer and the same loop-pass counts, on a device that rounds as the
+// host (device_rounding.h: lavapipe). On a device that rounds otherwise (a GPU's division and sqrt
+// are within a few ulps, and it may fuse a * b + c), the same primitive at t within kRayTRelative
+// of the ray's scale,
+// the same any-hit answer, and a few rays more that rounding turned (a ray grazing an edge, two
+// boxes entered at the same distance): allowedMismatches, allowedPassDifferences.
 #pragma once
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <span>
@@ -15,16 +22,36 @@
 #include "bvh/trace_result.h"
 #include "shared/instance.h"
 #include "bvh_test_scenes.h"
+#include "device_rounding.h"
 #include "vk/buffer.h"
 #include "vk/compute_pipeline.h"
 #include "vk/device.h"
 
 namespace vkp::test {
 
+/// A closest hit's t agrees up to rounding within this fraction of t plus the ray origin's largest
+/// coordinate (an origin rounded in its last bits moves t by that much in absolute terms).
+inline constexpr float kRayTRelative = 1e-5f;
+
 struct BvhComparison {
+    /// Rays whose results disagree: bitMismatches on a device that rounds as the host, else
+    /// roundingMismatches. Expected at most allowedMismatches (0 on such a device).
     int mismatches = 0, passDifferences = 0, hits = 0, cutShort = 0;
     int instanceHits = 0;  ///< closest hits on an instance's triangle (two-level BVH)
+    int bitMismatches = 0;       ///< t, primitive, instance or any-hit answer differ in any bit
+    int roundingMismatches = 0;  ///< ... beyond rounding: another primitive or instance, t beyond kRayTRelative, any-hit
+    int allowedMismatches = 0;       ///< 0 where the device rounds as the host; else max(1, rays / 1000)
+    int allowedPassDifferences = 0;  ///< 0 where the device rounds as the host; else max(1, rays / 1000)
+    int roundingAllowance = 0;       ///< max(1, rays / 1000), what a device that rounds otherwise may have
 };
+
+/// The closest hits (gpuT, gpuPrim) and `cpu` of `ray` agree up to rounding: the same primitive (or
+/// both miss) and t within kRayTRelative of (|t| + the origin's largest coordinate).
+inline bool sameHitUpToRounding(float gpuT, std::uint32_t gpuPrim, const TraceResult& cpu, const Ray& ray) {
+    if (gpuPrim != cpu.prim) return false;
+    const float scale = std::abs(cpu.t) + std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)});
+    return gpuT == cpu.t || std::abs(gpuT - cpu.t) <= kRayTRelative * scale;
+}
 
 /// The CPU twin of one layout: closest hit (any = false) or any hit (any = true) of a ray.
 using CpuTrace = std::function<TraceResult(const Ray&, bool any)>;
@@ -101,6 +128,11 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
     const std::vector<glm::uvec4> out =
         runTraversalKernel(dev, spirv, nodeBytes, nodeSize, prims, rays, what, instances, &gpuInstance);
     BvhComparison c;
+    const bool exact = roundsLikeTheHost(dev);
+    const int n = int(rays.size());
+    c.roundingAllowance = std::max(1, n / 1000);
+    c.allowedMismatches = exact ? 0 : c.roundingAllowance;
+    c.allowedPassDifferences = exact ? 0 : c.roundingAllowance;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const TraceResult closest = cpu(rays[i], false);
         const TraceResult any = cpu(rays[i], true);
@@ -111,14 +143,21 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
         c.cutShort += closest.cutShort() || any.cutShort();
         const std::uint32_t gpuInst = instances.empty() ? gpu::GPU_NO_INSTANCE : gpuInstance[i];
         c.instanceHits += closest.hit && closest.instance != gpu::GPU_NO_INSTANCE;
-        const bool same = std::memcmp(&gpuT, &closest.t, sizeof gpuT) == 0 && out[i].y == closest.prim &&
-                          gpuAny == any.hit && gpuInst == closest.instance;
-        if (!same && c.mismatches++ < 5)
-            ADD_FAILURE() << what << " ray " << i << ": gpu t " << gpuT << " prim " << out[i].y << " instance " << gpuInst
-                          << " any " << gpuAny << " | cpu t " << closest.t << " prim " << closest.prim << " instance "
-                          << closest.instance << " any " << any.hit;
+        const bool answers = gpuAny == any.hit && gpuInst == closest.instance;
+        const bool bits = answers && std::memcmp(&gpuT, &closest.t, sizeof gpuT) == 0 && out[i].y == closest.prim;
+        const bool rounding = answers && sameHitUpToRounding(gpuT, out[i].y, closest, rays[i]);
+        c.bitMismatches += !bits;
+        c.roundingMismatches += !rounding;
+        if (!(exact ? bits : rounding) && c.mismatches++ < 5)
+            std::printf("  %s ray %zu: gpu t %.9g prim %u instance %u any %d | cpu t %.9g prim %u instance %u any %d\n",
+                        what, i, double(gpuT), out[i].y, gpuInst, int(gpuAny), double(closest.t), closest.prim,
+                        closest.instance, int(any.hit));
         if (out[i].z != closest.passes || (out[i].w >> 1) != any.passes) ++c.passDifferences;
     }
+    if (!exact)
+        std::printf("  %s on a device that %s: %d rays differ in bits, %d beyond rounding (%d allowed), %d in passes (%d allowed)\n",
+                    what, probeRounding(dev).describe().c_str(), c.bitMismatches, c.roundingMismatches,
+                    c.allowedMismatches, c.passDifferences, c.allowedPassDifferences);
     return c;
 }
 
@@ -131,8 +170,8 @@ inline void expectMixedPrimitivesMatch(const BvhCompare& compare) {
     for (const Shape& s : randomSpheres(1000, 8)) mix.push_back(s);
     for (const Shape& s : randomQuads(1000, 9)) mix.push_back(s);
     const BvhComparison c = compare(mix, randomRays(mix, 20000, 10));
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_GT(c.hits, 5000);  // the rays do hit things: the comparison is not vacuous
 }
 
@@ -141,8 +180,8 @@ inline void expectDenseMeshMatches(const BvhCompare& compare) {
     const std::vector<Shape> mesh = sphereMesh(224, 224, 5.0f);
     ASSERT_GE(mesh.size(), 100000u);
     const BvhComparison c = compare(mesh, randomRays(mesh, 5000, 11, 6.0f));
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_EQ(c.cutShort, 0);
     EXPECT_GT(c.hits, 1000);
 }
@@ -150,19 +189,19 @@ inline void expectDenseMeshMatches(const BvhCompare& compare) {
 /// Axis-parallel rays in the planes of axis-aligned quads, and non-finite rays.
 inline void expectAxisAndNonFiniteRaysMatch(const BvhCompare& compare) {
     const BvhComparison c = compare(axisQuadGrid(), axisAndNonFiniteRays());
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_GT(c.hits, 100);
 }
 
 /// No primitive at all, and a single sphere.
 inline void expectEmptyAndSinglePrimitiveScenesMatch(const BvhCompare& compare) {
     BvhComparison c = compare({}, randomRays({}, 100, 3));
-    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
     EXPECT_EQ(c.hits, 0);
     const std::vector<Shape> one = {sphere(glm::vec3(0), 1.0f)};
     c = compare(one, randomRays(one, 300, 3, 2.0f));
-    EXPECT_EQ(c.mismatches, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
     EXPECT_GT(c.hits, 0);
 }
 

@@ -2,8 +2,9 @@
 // lib/traverse.glsl with VKP_HAS_INSTANCES, run by shaders/tests/bvh_trace.comp compiled with
 // -DVKP_INSTANCES) against their CPU twins (host/bvh/traverse_wide_cpu, tests/support/binary_bvh/traverse_binary_cpu) on the same
 // two-level BVH and rays: the same closest hit (t bit-exact, primitive, instance), any-hit answer
-// and pass counts. The scene's instances
-// translate, rotate, scale non-uniformly and mirror two shared meshes (tests/support/instance_test_scenes.h).
+// and pass counts (up to rounding on a device that rounds otherwise: bvh_trace_compare.h). The
+// scene's instances translate, rotate, scale non-uniformly and mirror two shared meshes
+// (tests/support/instance_test_scenes.h).
 #include <gtest/gtest.h>
 
 #include "bvh/traverse_wide_cpu.h"
@@ -47,8 +48,8 @@ TEST(GpuBvhInstances, HitsMatchCpuOnTheSameRays) {
     VKP_REQUIRE_DEVICE(dev);
     const Scene scene = instancedScene();
     const BvhComparison c = compareInstanced(dev, scene, randomRays(flattenedScene(scene).shapes, 20000, 71, 25.0f));
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_EQ(c.cutShort, 0);
     EXPECT_GT(c.instanceHits, 4000);  // the rays do reach the instances
 }
@@ -67,8 +68,8 @@ TEST(GpuBvhInstances, AxisParallelAndNonFiniteRaysMatchCpu) {
     scene.instances.push_back({0, glm::dmat4(glm::dvec4(-1, 0, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0), glm::dvec4(-1, 0, 0, 1))});
     scene.instances.push_back({0, glm::dmat4(glm::dvec4(2, 0, 0, 0), glm::dvec4(0, 0.5, 0, 0), glm::dvec4(0, 0, 1, 0), glm::dvec4(0, 0, 5, 1))});
     const BvhComparison c = compareInstanced(dev, scene, axisAndNonFiniteRays());
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_GT(c.hits, 100);
     EXPECT_GT(c.instanceHits, 10);
 }
@@ -77,8 +78,8 @@ TEST(GpuBvhInstances, BinaryLayoutHitsMatchCpuOnTheSameRays) {
     VKP_REQUIRE_DEVICE(dev);
     const Scene scene = instancedScene();
     const BvhComparison c = compareInstancedBinary(dev, scene, randomRays(flattenedScene(scene).shapes, 20000, 72, 25.0f));
-    EXPECT_EQ(c.mismatches, 0);
-    EXPECT_EQ(c.passDifferences, 0);
+    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
     EXPECT_EQ(c.cutShort, 0);
     EXPECT_GT(c.instanceHits, 4000);
 }

@@ -216,18 +216,25 @@ void checkDeviceEscapes(VulkanDevice& dev, std::span<const std::uint32_t> spirv,
     const MeshRays& mr = meshRays();
     const std::vector<glm::uvec4> out = runTraversalKernel(dev, spirv, nodes, nodeBytes, mr.bvh.prims, mr.rays, who);
     std::vector<std::size_t> escaped;
-    long mismatches = 0;
+    // On a device that rounds as the host, the same bits; else t up to rounding, and at a shared edge
+    // (where these rays aim) either of its triangles (bvh_trace_compare.h, device_rounding.h).
+    const bool exact = roundsLikeTheHost(dev);
+    long mismatches = 0, checked = 0;
     for (std::size_t i = 0; i < out.size(); ++i) {
         if (out[i].y == gpu::GPU_NODE_EMPTY) escaped.push_back(i);
         if (i % 97 == 0) {  // spot-check against the CPU twin
             const TraceResult h = cpu(mr.rays[i]);
             float t;
             std::memcpy(&t, &out[i].x, sizeof t);
-            mismatches += (std::memcmp(&t, &h.t, sizeof t) != 0 || out[i].y != h.prim);
+            TraceResult sameTriangle = h;
+            sameTriangle.prim = out[i].y;
+            mismatches += exact ? (std::memcmp(&t, &h.t, sizeof t) != 0 || out[i].y != h.prim)
+                                : !sameHitUpToRounding(t, out[i].y, sameTriangle, mr.rays[i]);
+            ++checked;
         }
     }
     checkEscapes(mr, escaped, who);
-    EXPECT_EQ(mismatches, 0);
+    EXPECT_LE(mismatches, exact ? 0 : std::max(1L, checked / 1000)) << who << ": " << probeRounding(dev).describe();
 }
 
 TEST(StressWatertight, DeviceTraversalNeverLetsARayOutOfTheSphereMesh) {
