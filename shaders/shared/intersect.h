@@ -297,9 +297,13 @@ VKP_FN vec3 safeInverse(vec3 d) {
 }
 
 /// Factor applied to a box's exit distance so that rounding in the slab test never rejects a box
-/// whose primitive the exact test hits: 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps), eps = 2^-24
-/// (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013, sec. 3).
-const float VKP_BOX_EXIT_SCALE = 1.0000004f;
+/// whose primitive the exact test hits (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013, sec. 3):
+/// 1 + 2 gamma(n), gamma(n) = n eps / (1 - n eps), eps = 2^-24. Each distance (b - o) * invD has a
+/// rounded subtraction and product (eps each) and the reciprocal 1 / d. Ize's n = 3 takes the
+/// reciprocal correctly rounded (eps), as lavapipe and the host compute it; Vulkan allows a division
+/// 2.5 ulp (up to 5 eps relative), and GPUs use that, so n = 7 here: 1 + 14 eps = 1 + 8.3e-7,
+/// rounded up to the float 1 + 8 * 2^-23.
+const float VKP_BOX_EXIT_SCALE = 1.00000095f;
 
 /// Slab test of a ray against the closed box [bmin, bmax] with invD = safeInverse(d) (Kay & Kajiya
 /// 1986; Williams et al., "An Efficient and Robust Ray-Box Intersection Algorithm", 2005).

@@ -7,7 +7,8 @@ per benchmark-suite scene, the generated dense mesh included (the bench_scenes t
 samples, a positive steady rays/s, a time to first sample, and no non-finite sample or cut path.
 The script runs rarely and elsewhere; this keeps it from rotting unnoticed. First it checks the
 build's lib/ folder (made from vkpath by tools/bundle-libs.sh): it holds every library the script
-would copy for vkpath and every GPU test binary together, so the copied tests load there too.
+would copy for vkpath and every GPU test binary together, so the copied tests load there too, and
+the validation layer (lib/layers), which the rounding probe's run in the script then loads.
 Usage: test_gpu_check.py SOURCE_DIR BUILD_DIR WORKDIR
 Exit status: 0 pass, 1 fail, 77 (skipped) without a Vulkan device unless CI=true."""
 import json
@@ -34,6 +35,12 @@ def check_bundle(source, build, work):
     every = os.path.join(work, "bundle-of-every-binary")
     shutil.rmtree(every, ignore_errors=True)
     subprocess.run([os.path.join(source, "tools", "bundle-libs.sh"), every] + binaries, check=True)
+    manifest = os.path.join(lib, "layers", "VkLayer_khronos_validation.json")
+    if not os.path.isfile(manifest) or not os.path.isfile(os.path.join(lib, "layers", "libVkLayer_khronos_validation.so")):
+        fail("%s lacks the validation layer (manifest and library) that the GPU tests need" % os.path.join(lib, "layers"))
+    with open(manifest) as f:
+        if json.load(f)["layer"]["library_path"] != "./libVkLayer_khronos_validation.so":
+            fail("the bundled layer's manifest does not name the library beside it")
     needed = set(os.listdir(every))
     have = set(f for f in os.listdir(lib) if ".so" in f)
     if not needed:

@@ -132,8 +132,9 @@ TEST_F(CliBench, KilledRunKeepsItsRows) {
     VKP_REQUIRE_DEVICE(dev);
     makeReference();
     removeAll({"log.csv", "st.json", "never.png"});
-    // Killed (SIGKILL) after 4 s, long before 1M spp: the rows so far are complete and on disk.
-    const ProcessResult r = run({"render", scene("cornell-classic.json"), "--spp", "1000000", "--width", "16", "--height",
+    // Killed (SIGKILL) after 4 s, long before 16M spp (also on a fast GPU: at most 8 samples per
+    // dispatch): the rows so far are complete and on disk.
+    const ProcessResult r = run({"render", scene("cornell-classic.json"), "--spp", "16000000", "--width", "16", "--height",
                                  "16", "--reference", "ref.pfm", "--error-log", "log.csv", "--stats-json", "st.json",
                                  "-o", "never.png", "--quiet"},
                                 "timeout -s KILL 4");

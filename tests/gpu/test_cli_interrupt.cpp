@@ -226,11 +226,13 @@ TEST_F(CliInterrupt, SampleRangesMergeTheirFeatureImages) {
     EXPECT_FALSE(fs::exists(dir / "refused.exr"));
 }
 
-// Several devices in one process (`--device 0,0` opens lavapipe twice): the samples are split in
-// rounds and merged; the image equals one device's render within float rounding (printed).
+// Several devices in one process (`--device N,N` opens the default device twice: lavapipe here):
+// the samples are split in rounds and merged; the image equals one device's render within float
+// rounding (printed).
 TEST_F(CliInterrupt, TwoDevicesEqualOneDevice) {
     VKP_REQUIRE_DEVICE(dev);
-    ProcessResult r = run(render({"--spp", "30", "--device", "0,0", "-o", "two.exr", "--partial", "two-part.exr"}));
+    const std::string twice = std::to_string(dev.info().index) + "," + std::to_string(dev.info().index);
+    ProcessResult r = run(render({"--spp", "30", "--device", twice, "-o", "two.exr", "--partial", "two-part.exr"}));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("on 2 devices"), std::string::npos) << r.err;
     ASSERT_EQ(run(render({"--spp", "30", "-o", "one.exr", "--quiet"})).exitCode, 0);

@@ -185,7 +185,7 @@ TEST(GpuRender, DispatchTimeTargetHoldsTheSamplesPerDispatchDown) {
         EXPECT_LT(r.renderer->longestDispatchSeconds(), 5.0);
         sums[k] = r.renderer->readSums();
     }
-    EXPECT_EQ(spd[0], 8u) << "lavapipe: the loop budget alone";
+    EXPECT_EQ(spd[0], 8u) << "no time target that a 16x16 dispatch misses: the loop budget alone";
     EXPECT_EQ(spd[1], 1u) << "a target no dispatch can meet";
     ASSERT_TRUE(litAndNotConstant(sums[0].mean(), "cornell-book3 16x16"));
     EXPECT_EQ(0, std::memcmp(sums[0].sum.data(), sums[1].sum.data(), sums[0].sum.size() * sizeof(double)));
