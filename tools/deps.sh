@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vkpath needs to build, test and run, if any is missing.
 # With --bench also python3-numpy, python3-matplotlib (for tools/bench.sh), valgrind
-# (tools/instructions-per-sample.sh) and libembree-dev (Embree 3: the suite's reference tracer,
+# (tools/instructions-per-sample.sh), xz-utils (tools/gpu-pack.sh) and libembree-dev (Embree 3: the suite's reference tracer,
 # tests/bench/embree_reference); with --reference also Blender (the `reference` tests, the suite's `cycles` part); with
 # --farm also Slurm and munge (the `farm` test); with --fuzz also clang and libFuzzer (tools/fuzz.sh).
 # Options combine.
@@ -19,7 +19,7 @@ for option in "$@"; do
   case "$option" in
     # --bench: also what the benchmark suite needs (tools/bench.sh), not the tests; libembree-dev
     # (Embree 3.13 on Debian 12) for the suite's Embree reference tracer (docs/performance.md).
-    --bench) packages+=(python3-numpy python3-matplotlib valgrind libembree-dev) ;;
+    --bench) packages+=(python3-numpy python3-matplotlib valgrind xz-utils libembree-dev) ;;
     # --reference: Blender (Cycles) for the `reference` tests (tools/blender-reference.sh).
     --reference) packages+=(blender) ;;
     # --farm: Slurm and munge for the `farm` test's one-node cluster (tools/slurm/cluster-up.sh).
