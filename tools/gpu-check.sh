@@ -19,7 +19,7 @@
 # the shared libraries vkpath needs beyond the C and C++ runtimes into build/release/lib (this
 # script puts them on LD_LIBRARY_PATH: the machine may lack Debian's packages), and lib/layers the
 # validation layer that the GPU tests need (VK_LAYER_PATH). tools/gpu-pack.sh packs all of that
-# into one archive (~30 MB); unpack it on the machine and run this from its root. Or copy the
+# into one archive (24 MB); unpack it on the machine and run this from its root. Or copy the
 # repository with its build tree (tools/, scenes/, build/release/) to the machine, keeping their
 # places relative to each other, and run this from the copy's root. The tests find the
 # scenes and the vkpath binary through VKPATH_SOURCE_DIR and VKPATH_BINARY (tests/support/
