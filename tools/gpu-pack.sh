@@ -5,7 +5,8 @@
 # bundle_libs), bench-scenes/ (the dense mesh, target bench_scenes) and the GPU test binaries,
 # stripped. The binaries are nearly the same program many times over, so the archive is compressed
 # with a dictionary that spans them: all 35 test binaries take ~15 MB instead of ~300 MB, and the
-# whole archive 24 MB (4.5 minutes of xz on one core, 2026-12-06). On the machine:
+# whole archive 24 MB (4.5 minutes of xz on one core, 2026-12-06). On the machine (tar and xz
+# unpack it):
 #   tar xf gpu-pack.tar.xz && cd gpu-pack && tools/gpu-check.sh
 # Usage: tools/gpu-pack.sh [--build DIR] [--tests REGEX] OUT.tar.xz
 #   --build DIR    the build tree (default build/release)
