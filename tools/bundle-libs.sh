@@ -18,23 +18,20 @@ layer=0
 dest=$1
 shift
 mkdir -p "$dest"
-if [ "$layer" = 1 ]; then
-  manifest=""
+copy_validation_layer() {  # into $dest/layers, or says why not
+  local manifest="" d name lib=""
   for d in /usr/share/vulkan/explicit_layer.d /etc/vulkan/explicit_layer.d /usr/local/share/vulkan/explicit_layer.d; do
     [ -f "$d/VkLayer_khronos_validation.json" ] && { manifest=$d/VkLayer_khronos_validation.json; break; }
   done
   if [ -z "$manifest" ]; then
     echo "bundle-libs: no validation layer to copy (apt-get install vulkan-validationlayers); the GPU tests need it" >&2
-    layer=0
+    return 0
   fi
-fi
-if [ "$layer" = 1 ]; then
   name=$(sed -n 's/^ *"library_path": *"\([^"]*\)".*/\1/p' "$manifest" | head -1)
   case $name in
     /*) lib=$name ;;
     */*) lib=$(dirname "$manifest")/$name ;;
-    *) lib=""
-       for d in "/usr/lib/$(uname -m)-linux-gnu" /usr/lib64 /usr/lib /usr/local/lib; do
+    *) for d in "/usr/lib/$(uname -m)-linux-gnu" /usr/lib64 /usr/lib /usr/local/lib; do
          [ -f "$d/$name" ] && { lib=$d/$name; break; }
        done ;;
   esac
@@ -44,7 +41,8 @@ if [ "$layer" = 1 ]; then
   mv "$dest/layers/libVkLayer_khronos_validation.so.tmp" "$dest/layers/libVkLayer_khronos_validation.so"
   # A relative library_path is taken relative to the manifest (the Vulkan loader's layer interface).
   sed 's|^\( *"library_path": *"\)[^"]*"|\1./libVkLayer_khronos_validation.so"|' "$manifest" >"$dest/layers/VkLayer_khronos_validation.json"
-fi
+}
+[ "$layer" = 1 ] && copy_validation_layer
 for bin in "$@"; do
   ldd "$bin" | while read -r name arrow path _; do
     [ "$arrow" = "=>" ] || continue

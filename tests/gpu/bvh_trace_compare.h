@@ -6,7 +6,7 @@
 // are within a few ulps, and it may fuse a * b + c), the same primitive at t within kRayTRelative
 // of the ray's scale,
 // the same any-hit answer, and a few rays more that rounding turned (a ray grazing an edge, two
-// boxes entered at the same distance): allowedMismatches, allowedPassDifferences.
+// boxes entered at the same distance): BvhComparison::allowed().
 #pragma once
 #include <gtest/gtest.h>
 
@@ -35,22 +35,28 @@ inline constexpr float kRayTRelative = 1e-5f;
 
 struct BvhComparison {
     /// Rays whose results disagree: bitMismatches on a device that rounds as the host, else
-    /// roundingMismatches. Expected at most allowedMismatches (0 on such a device).
+    /// roundingMismatches. Expected at most allowed(), as are the rays with other pass counts.
     int mismatches = 0, passDifferences = 0, hits = 0, cutShort = 0;
     int instanceHits = 0;  ///< closest hits on an instance's triangle (two-level BVH)
     int bitMismatches = 0;       ///< t, primitive, instance or any-hit answer differ in any bit
     int roundingMismatches = 0;  ///< ... beyond rounding: another primitive or instance, t beyond kRayTRelative, any-hit
-    int allowedMismatches = 0;       ///< 0 where the device rounds as the host; else max(1, rays / 1000)
-    int allowedPassDifferences = 0;  ///< 0 where the device rounds as the host; else max(1, rays / 1000)
-    int roundingAllowance = 0;       ///< max(1, rays / 1000), what a device that rounds otherwise may have
+    bool exact = true;           ///< the device rounds as the host (device_rounding.h)
+    int roundingAllowance = 0;   ///< max(1, rays / 1000): what a device that rounds otherwise may have
+    /// Rays that may disagree (in results, and in pass counts): 0 where the device rounds as the host.
+    int allowed() const { return exact ? 0 : roundingAllowance; }
 };
 
+/// Hit distances of `ray` that agree up to rounding: within kRayTRelative of (|t| + the origin's
+/// largest coordinate), or equal (both misses, VKP_FAR).
+inline bool sameDistanceUpToRounding(float gpuT, float cpuT, const Ray& ray) {
+    const float scale = std::abs(cpuT) + std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)});
+    return gpuT == cpuT || std::abs(gpuT - cpuT) <= kRayTRelative * scale;
+}
+
 /// The closest hits (gpuT, gpuPrim) and `cpu` of `ray` agree up to rounding: the same primitive (or
-/// both miss) and t within kRayTRelative of (|t| + the origin's largest coordinate).
+/// both miss) and sameDistanceUpToRounding.
 inline bool sameHitUpToRounding(float gpuT, std::uint32_t gpuPrim, const TraceResult& cpu, const Ray& ray) {
-    if (gpuPrim != cpu.prim) return false;
-    const float scale = std::abs(cpu.t) + std::max({std::abs(ray.o.x), std::abs(ray.o.y), std::abs(ray.o.z)});
-    return gpuT == cpu.t || std::abs(gpuT - cpu.t) <= kRayTRelative * scale;
+    return gpuPrim == cpu.prim && sameDistanceUpToRounding(gpuT, cpu.t, ray);
 }
 
 /// The CPU twin of one layout: closest hit (any = false) or any hit (any = true) of a ray.
@@ -129,10 +135,8 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
         runTraversalKernel(dev, spirv, nodeBytes, nodeSize, prims, rays, what, instances, &gpuInstance);
     BvhComparison c;
     const bool exact = roundsLikeTheHost(dev);
-    const int n = int(rays.size());
-    c.roundingAllowance = std::max(1, n / 1000);
-    c.allowedMismatches = exact ? 0 : c.roundingAllowance;
-    c.allowedPassDifferences = exact ? 0 : c.roundingAllowance;
+    c.exact = exact;
+    c.roundingAllowance = std::max(1, int(rays.size()) / 1000);
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const TraceResult closest = cpu(rays[i], false);
         const TraceResult any = cpu(rays[i], true);
@@ -157,7 +161,7 @@ inline BvhComparison compareTraversal(VulkanDevice& dev, std::span<const std::ui
     if (!exact)
         std::printf("  %s on a device that %s: %d rays differ in bits, %d beyond rounding (%d allowed), %d in passes (%d allowed)\n",
                     what, probeRounding(dev).describe().c_str(), c.bitMismatches, c.roundingMismatches,
-                    c.allowedMismatches, c.passDifferences, c.allowedPassDifferences);
+                    c.allowed(), c.passDifferences, c.allowed());
     return c;
 }
 
@@ -170,8 +174,8 @@ inline void expectMixedPrimitivesMatch(const BvhCompare& compare) {
     for (const Shape& s : randomSpheres(1000, 8)) mix.push_back(s);
     for (const Shape& s : randomQuads(1000, 9)) mix.push_back(s);
     const BvhComparison c = compare(mix, randomRays(mix, 20000, 10));
-    EXPECT_LE(c.mismatches, c.allowedMismatches);
-    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
+    EXPECT_LE(c.mismatches, c.allowed());
+    EXPECT_LE(c.passDifferences, c.allowed());
     EXPECT_GT(c.hits, 5000);  // the rays do hit things: the comparison is not vacuous
 }
 
@@ -180,8 +184,8 @@ inline void expectDenseMeshMatches(const BvhCompare& compare) {
     const std::vector<Shape> mesh = sphereMesh(224, 224, 5.0f);
     ASSERT_GE(mesh.size(), 100000u);
     const BvhComparison c = compare(mesh, randomRays(mesh, 5000, 11, 6.0f));
-    EXPECT_LE(c.mismatches, c.allowedMismatches);
-    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
+    EXPECT_LE(c.mismatches, c.allowed());
+    EXPECT_LE(c.passDifferences, c.allowed());
     EXPECT_EQ(c.cutShort, 0);
     EXPECT_GT(c.hits, 1000);
 }
@@ -189,19 +193,19 @@ inline void expectDenseMeshMatches(const BvhCompare& compare) {
 /// Axis-parallel rays in the planes of axis-aligned quads, and non-finite rays.
 inline void expectAxisAndNonFiniteRaysMatch(const BvhCompare& compare) {
     const BvhComparison c = compare(axisQuadGrid(), axisAndNonFiniteRays());
-    EXPECT_LE(c.mismatches, c.allowedMismatches);
-    EXPECT_LE(c.passDifferences, c.allowedPassDifferences);
+    EXPECT_LE(c.mismatches, c.allowed());
+    EXPECT_LE(c.passDifferences, c.allowed());
     EXPECT_GT(c.hits, 100);
 }
 
 /// No primitive at all, and a single sphere.
 inline void expectEmptyAndSinglePrimitiveScenesMatch(const BvhCompare& compare) {
     BvhComparison c = compare({}, randomRays({}, 100, 3));
-    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.mismatches, c.allowed());
     EXPECT_EQ(c.hits, 0);
     const std::vector<Shape> one = {sphere(glm::vec3(0), 1.0f)};
     c = compare(one, randomRays(one, 300, 3, 2.0f));
-    EXPECT_LE(c.mismatches, c.allowedMismatches);
+    EXPECT_LE(c.mismatches, c.allowed());
     EXPECT_GT(c.hits, 0);
 }
 

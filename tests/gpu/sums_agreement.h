@@ -36,11 +36,10 @@ struct SumsAgreement {
     double totalRelative = 0;  ///< |total a - total b| / |total a| of the radiance sums
     bool identical = false;    ///< every bit of sum and sumSq equal
 
+    /// Pixels that may disagree: kPixelsBeyondFraction of them, at least one.
+    std::size_t allowedBeyond() const { return std::max<std::size_t>(1, std::size_t(kPixelsBeyondFraction * double(pixels))); }
     /// Within the rounding tolerance above (identical sums always are).
-    bool withinRounding() const {
-        const std::size_t allowed = std::max<std::size_t>(1, std::size_t(kPixelsBeyondFraction * double(pixels)));
-        return identical || (beyond <= allowed && totalRelative <= kTotalRelative);
-    }
+    bool withinRounding() const { return identical || (beyond <= allowedBeyond() && totalRelative <= kTotalRelative); }
 };
 
 /// Compares two renders' sums (same size: else nothing agrees).

@@ -161,7 +161,7 @@ TEST(GpuRender, RoundingTolerantComparisonSeparatesRoundingFromOtherSamples) {
     EXPECT_FALSE(m.identical) << "the move must reach the sums' bits, or this measures nothing";
     EXPECT_TRUE(m.withinRounding());
     EXPECT_FALSE(r.withinRounding());
-    EXPECT_GT(r.beyond, 20 * std::max<std::size_t>(1, std::size_t(kPixelsBeyondFraction * double(r.pixels))));
+    EXPECT_GT(r.beyond, 20 * r.allowedBeyond());
 }
 
 // Automatic samples per dispatch: on lavapipe (a CPU device: no watchdog) only the loop budget
