@@ -226,63 +226,146 @@ bool bounce(inout PathState s, inout uint rays, inout uint passes) {
                    passes);
 }
 
-void main() {
-    // The image is rendered in bands of whole rows (push.band; one band unless the accumulation
-    // buffers would exceed the device's storage-buffer range, host/render/gpu_arrays.h planBands):
-    // the accumulation buffers bound to a dispatch hold its band's rows only, from pixel `base` on.
-    // Scrambled tile order: lavapipe hands each thread a contiguous run of workgroups, so a
-    // permutation that spreads each run over the band balances cheap and expensive regions
-    // (push.band.w = 1: row order, `--tile-order linear`).
+/// The pixel of slot j of this invocation (push.batch.z slots: the same invocation of push.batch.z
+/// consecutive virtual workgroups g * z + j), or false when that slot has none (beyond the image's
+/// edge, the band's tiles or the active list). Scrambled order: lavapipe hands each thread a
+/// contiguous run of workgroups, so a permutation that spreads each run over the band balances
+/// cheap and expensive regions (push.band.w = 1: row order, `--tile-order linear`).
+bool pixelOfSlot(uint j, out uvec2 pix, out uint pixel) {
     uint width = frame.size.x;
-    uint base = push.band.x * width;
-    bool adaptive = push.adaptive.x != 0u;
-    uvec2 pix;
-    uint pixel;
-    if (!adaptive) {
-        // The dispatch is the band's tiles: gl_NumWorkGroups.x of them per row.
-        uint tilesX = gl_NumWorkGroups.x;
-        uint group = gl_WorkGroupID.y * tilesX + gl_WorkGroupID.x;
+    uint group = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * push.batch.z + j;
+    if (push.adaptive.x == 0u) {
+        // The band's tiles, gl_WorkGroupSize.xy pixels each.
+        if (group >= push.band.z) return false;
+        uint tilesX = (width + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
         uint tile = (group * push.band.w) % push.band.z;  // host keeps the product below 2^32
         pix = uvec2(tile % tilesX, tile / tilesX) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
         pix.y += push.band.x;
-        if (pix.x >= width || pix.y >= push.band.x + push.band.y) return;
         pixel = pix.y * width + pix.x;
-    } else {
-        // Only the band's pixels still active, packed: no lane idles on a converged pixel.
-        uint group = gl_WorkGroupID.y * push.adaptive.w + gl_WorkGroupID.x;
-        if (group >= push.adaptive.y) return;
-        uint slot = ((group * push.adaptive.z) % push.adaptive.y) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
-        if (slot >= push.adaptive.x) return;
-        pixel = activePixels[slot];
-        pix = uvec2(pixel % width, pixel / width);
+        return pix.x < width && pix.y < push.band.x + push.band.y;
     }
-    uint at = 2u * (pixel - base);  // the pixel's pair of vec4 in the band's buffers
-    uint aovAt = AOV_VEC4_PER_PIXEL * (pixel - base);
-    vec4 aov0 = vec4(0.0f), aov1 = vec4(0.0f), aov2 = vec4(0.0f), aov3 = vec4(0.0f);
-    if (HAS_AOV) {
-        aov0 = aovSums[aovAt];
-        aov1 = aovSums[aovAt + 1u];
-        aov2 = aovSums[aovAt + 2u];
-        aov3 = aovSums[aovAt + 3u];
-    }
+    // Only the band's pixels still active, packed: no lane idles on a converged pixel.
+    if (group >= push.adaptive.y) return false;
+    uint slot = ((group * push.adaptive.z) % push.adaptive.y) * (gl_WorkGroupSize.x * gl_WorkGroupSize.y) + gl_LocalInvocationIndex;
+    if (slot >= push.adaptive.x) return false;
+    pixel = activePixels[slot];
+    pix = uvec2(pixel % width, pixel / width);
+    return true;
+}
 
-    vec4 sum = accumSum[at];
-    vec4 sumLo = accumSum[at + 1u];
-    vec4 sq = accumSq[at];
-    vec4 sqLo = accumSq[at + 1u];
-    vec4 dSum = vec4(0.0f);
-    vec4 dSq = vec4(0.0f);
-    if (adaptive) {
-        dSum = decisionSums[at];
-        dSq = decisionSums[at + 1u];
+/// The first slot from j on that has a pixel (push.batch.z if none).
+uint nextSlot(uint j, out uvec2 pix, out uint pixel) {
+    while (j < push.batch.z && !pixelOfSlot(j, pix, pixel)) j++;
+    return j;
+}
+
+/// One pixel's sums, held in registers while its samples are traced.
+struct PixelSums {
+    vec4 sum, sumLo, sq, sqLo;       // accumulation: a double-float pair each (shared/compensated_sum.h)
+    vec4 dSum, dSq;                  // adaptive sampling's decision stream
+    vec4 aov0, aov1, aov2, aov3;     // HAS_AOV: the feature sums (shared/aov.h)
+};
+
+PixelSums loadSums(uint pixel, uint base) {
+    PixelSums p;
+    uint at = 2u * (pixel - base);  // the pixel's pair of vec4 in the band's buffers
+    p.sum = accumSum[at];
+    p.sumLo = accumSum[at + 1u];
+    p.sq = accumSq[at];
+    p.sqLo = accumSq[at + 1u];
+    p.dSum = vec4(0.0f);
+    p.dSq = vec4(0.0f);
+    if (push.adaptive.x != 0u) {
+        p.dSum = decisionSums[at];
+        p.dSq = decisionSums[at + 1u];
     }
+    p.aov0 = vec4(0.0f), p.aov1 = vec4(0.0f), p.aov2 = vec4(0.0f), p.aov3 = vec4(0.0f);
+    if (HAS_AOV) {
+        uint aovAt = AOV_VEC4_PER_PIXEL * (pixel - base);
+        p.aov0 = aovSums[aovAt];
+        p.aov1 = aovSums[aovAt + 1u];
+        p.aov2 = aovSums[aovAt + 2u];
+        p.aov3 = aovSums[aovAt + 3u];
+    }
+    return p;
+}
+
+void storeSums(uint pixel, uint base, PixelSums p) {
+    uint at = 2u * (pixel - base);
+    accumSum[at] = p.sum;
+    accumSum[at + 1u] = p.sumLo;
+    accumSq[at] = p.sq;
+    accumSq[at + 1u] = p.sqLo;
+    if (HAS_AOV) {
+        uint aovAt = AOV_VEC4_PER_PIXEL * (pixel - base);
+        aovSums[aovAt] = p.aov0;
+        aovSums[aovAt + 1u] = p.aov1;
+        aovSums[aovAt + 2u] = p.aov2;
+        aovSums[aovAt + 3u] = p.aov3;
+    }
+    if (push.adaptive.x != 0u) {
+        decisionSums[at] = p.dSum;
+        decisionSums[at + 1u] = p.dSq;
+    }
+}
+
+/// Adds the finished sample s (index sampleIndex) to the pixel's sums; returns false if it was
+/// dropped (not finite, or too large).
+bool addSample(inout PixelSums p, PathState s, uint sampleIndex) {
+    // Samples are added in sample order, so any split over dispatches gives the same sums.
+    vec3 L = s.radiance;
+    // NaN, Inf, or so large that a sum of such samples (or of their squares) could overflow:
+    // dropped and counted (Inf is above the bound too).
+    bool dropped = any(isnan(L)) || any(greaterThan(abs(L), vec3(MAX_SAMPLE_RADIANCE)));
+    if (dropped) {
+    } else if (push.adaptive.x != 0u && (sampleIndex & 3u) == 3u) {
+        p.dSum += vec4(L, 1.0f);  // decision stream: steers adaptive sampling, not in the image
+        p.dSq += vec4(L * L, 0.0f);
+    } else {
+        addCompensated(p.sum, p.sumLo, vec4(L, 1.0f));
+        addCompensated(p.sq, p.sqLo, vec4(L * L, 0.0f));
+    }
+    if (HAS_AOV) {  // every sample, the dropped ones and adaptive sampling's decision stream too
+        // Running means (shared/aov.h): over the samples, and the position over the hits.
+        p.aov0.w += 1.0f;
+        p.aov0.xyz += (s.aovAlbedo - p.aov0.xyz) / p.aov0.w;
+        p.aov1.xyz += (s.aovNormal - p.aov1.xyz) / p.aov0.w;
+        // A dropped sample adds no emission: it is not in the image either.
+        vec3 emit = dropped ? vec3(0.0f) : (s.aovEmitSet ? s.aovEmit : L);
+        p.aov3.xyz += (emit - p.aov3.xyz) / p.aov0.w;
+        float indirect = dropped ? 0.0f : luminance709(L - emit);
+        p.aov2.w += (indirect - p.aov2.w) / p.aov0.w;
+        p.aov3.w += (indirect * indirect - p.aov3.w) / p.aov0.w;
+        if (s.aovPos.w > 0.0f) {
+            p.aov1.w += 1.0f;
+            p.aov2.xyz += (s.aovPos.xyz - p.aov2.xyz) / p.aov1.w;
+        }
+    }
+    return !dropped;
+}
+
+void main() {
+    // An invocation adds push.batch.y samples (from push.batch.x on) to each pixel of its
+    // push.batch.z slots, one pixel after the other (pixelOfSlot). The image is rendered in bands of
+    // whole rows (push.band; one band unless the accumulation buffers would exceed the device's
+    // storage-buffer range, host/render/gpu_arrays.h planBands): the accumulation buffers bound to
+    // a dispatch hold its band's rows only, from pixel `base` on. A finished path is followed at
+    // once by the next sample, of the same pixel or of the next slot's ("path regeneration"), so
+    // the lanes of a SIMD batch stay busy whether the dispatch holds many samples of few pixels or
+    // one sample of many (a large image, where one sample per pixel fills a submission).
+    uint base = push.band.x * frame.size.x;
+    uvec2 pix;
+    uint pixel;
+    uint j = nextSlot(0u, pix, pixel);
+    if (j >= push.batch.z || push.batch.y == 0u) return;
+    PixelSums p = loadSums(pixel, base);
     uint rays = 0u;
     uint nonfinite = 0u;
     uint cut = 0u;
     uint passes = 0u;  // loop passes of this invocation, all loops together (lavapipe's limit is per invocation)
-    uint k = 0u;       // samples of this dispatch finished
+    uint k = 0u;       // samples of the current pixel finished in this dispatch
     PathState s = startPath(pix, pixel, push.batch.x);
-    while (k < push.batch.y) {
+    while (true) {
         passes++;
         bool ended = bounce(s, rays, passes);
         if (passes >= VKP_MAX_PASSES) {  // lavapipe's silent loop limit is near: stop, and say so
@@ -290,54 +373,20 @@ void main() {
             break;
         }
         if (ended) {
-            // Samples are added in sample order, so any split over dispatches gives the same sums.
-            vec3 L = s.radiance;
-            // NaN, Inf, or so large that a sum of such samples (or of their squares) could overflow:
-            // dropped and counted (Inf is above the bound too).
-            bool dropped = any(isnan(L)) || any(greaterThan(abs(L), vec3(MAX_SAMPLE_RADIANCE)));
-            if (dropped) {
-                nonfinite++;
-            } else if (adaptive && ((push.batch.x + k) & 3u) == 3u) {
-                dSum += vec4(L, 1.0f);  // decision stream: steers adaptive sampling, not in the image
-                dSq += vec4(L * L, 0.0f);
-            } else {
-                addCompensated(sum, sumLo, vec4(L, 1.0f));
-                addCompensated(sq, sqLo, vec4(L * L, 0.0f));
-            }
-            if (HAS_AOV) {  // every sample, the dropped ones and adaptive sampling's decision stream too
-                // Running means (shared/aov.h): over the samples, and the position over the hits.
-                aov0.w += 1.0f;
-                aov0.xyz += (s.aovAlbedo - aov0.xyz) / aov0.w;
-                aov1.xyz += (s.aovNormal - aov1.xyz) / aov0.w;
-                // A dropped sample adds no emission: it is not in the image either.
-                vec3 emit = dropped ? vec3(0.0f) : (s.aovEmitSet ? s.aovEmit : L);
-                aov3.xyz += (emit - aov3.xyz) / aov0.w;
-                float indirect = dropped ? 0.0f : luminance709(L - emit);
-                aov2.w += (indirect - aov2.w) / aov0.w;
-                aov3.w += (indirect * indirect - aov3.w) / aov0.w;
-                if (s.aovPos.w > 0.0f) {
-                    aov1.w += 1.0f;
-                    aov2.xyz += (s.aovPos.xyz - aov2.xyz) / aov1.w;
-                }
-            }
+            if (!addSample(p, s, push.batch.x + k)) nonfinite++;
             k++;
-            s = startPath(pix, pixel, push.batch.x + min(k, push.batch.y - 1u));
+            if (k == push.batch.y) {  // this pixel's samples are done: on to the next slot's pixel
+                if (!PIXEL_SLOTS) break;  // one pixel per invocation: its sums are stored below
+                storeSums(pixel, base, p);
+                k = 0u;
+                j = nextSlot(j + 1u, pix, pixel);
+                if (j >= push.batch.z) break;
+                p = loadSums(pixel, base);
+            }
+            s = startPath(pix, pixel, push.batch.x + k);
         }
     }
-    accumSum[at] = sum;
-    accumSum[at + 1u] = sumLo;
-    accumSq[at] = sq;
-    accumSq[at + 1u] = sqLo;
-    if (HAS_AOV) {
-        aovSums[aovAt] = aov0;
-        aovSums[aovAt + 1u] = aov1;
-        aovSums[aovAt + 2u] = aov2;
-        aovSums[aovAt + 3u] = aov3;
-    }
-    if (adaptive) {
-        decisionSums[at] = dSum;
-        decisionSums[at + 1u] = dSq;
-    }
+    if (!PIXEL_SLOTS || cut > 0u) storeSums(pixel, base, p);  // or what the cut pixel had; later slots get nothing
 
     uint old = atomicAdd(counters[COUNTER_RAYS_LO], rays);
     if (old + rays < old) atomicAdd(counters[COUNTER_RAYS_HI], 1u);

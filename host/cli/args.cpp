@@ -112,6 +112,9 @@ render options:
   --denoise-output FILE   where the denoised image goes (with --denoise)
   --denoise-dumps         denoise every dump too: frame-<spp>.denoised.<ext> (with --denoise)
   --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
+  --pixels-per-invocation N  pixels one invocation takes in turn, 1-64 (default: automatic: on a
+                            CPU device, several where a dispatch adds fewer samples per pixel than
+                            --samples-per-dispatch, as in large images; the image is the same)
   --adaptive T            adaptive sampling: a pixel stops once its estimated relative standard error
                           (that of relMSE's (x-y)^2/(y^2+0.01)) is <= T, e.g. 0.02; unbiased: a quarter
                           of the samples only decide (docs/design.md "Adaptive sampling"); --spp is the maximum
@@ -258,6 +261,7 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             else if (f == "--denoise-output") a.session.denoiseOutput = fileValue(f);
             else if (f == "--denoise-dumps") a.session.denoiseDumps = true;
             else if (f == "--samples-per-dispatch") a.render.samplesPerDispatch = parseUint(f, value(f), 1, 64);
+            else if (f == "--pixels-per-invocation") a.render.pixelsPerInvocation = parseUint(f, value(f), 1, 64);
             else if (f == "--adaptive") a.render.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
             else if (f == "--adaptive-min-spp") a.render.adaptiveMinSpp = parseUint(f, value(f), 8, 1u << 24);
             else if (f == "--reference") a.reference = fileValue(f);

@@ -74,6 +74,7 @@ std::vector<SpecConstant> Features::specTable() const {
         {VKP_SPEC_HAS_SOLID_TEXTURES, "HAS_SOLID_TEXTURES", solidTextures, on(solidTextures, "json-textures")},
         {VKP_SPEC_HAS_MOTION, "HAS_MOTION", motion, on(motion, "motion")},
         {VKP_SPEC_HAS_AOV, "HAS_AOV", aov, on(aov, "aov")},
+        {VKP_SPEC_PIXEL_SLOTS, "PIXEL_SLOTS", pixelSlots, ""},  // the image does not depend on it
     };
     static_assert(std::size(table) == VKP_SPEC_COUNT, "one entry per specialization constant");
     std::vector<SpecConstant> out(std::begin(table), std::end(table));

@@ -40,6 +40,9 @@ struct Features {
     bool solidTextures = false;     ///< some material has a JSON texture (Material::albedoTexture, emitTexture)
     bool motion = false;            ///< some shape moves (Shape::velocity: motion blur)
     bool aov = false;               ///< the kernel adds feature values to the AOV sums (RenderOptions::aov)
+    /// An invocation may take several pixels (Renderer: dispatches that add fewer samples per pixel
+    /// than it wants per invocation, on a CPU device). The renderer sets it for its second pipeline.
+    bool pixelSlots = false;
     Sampler sampler = Sampler::Mis;
     Sequence sequence = Sequence::Sobol;
     LightSampling lightSampling = LightSampling::Auto;

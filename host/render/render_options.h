@@ -76,6 +76,11 @@ struct RenderOptions {
     /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;
+    /// Pixels one invocation takes, one after the other, in a dispatch that adds fewer samples per
+    /// pixel than samplesPerDispatch (a large image, whose submissions hold one sample or few):
+    /// 0 = automatic: on a CPU device as many as make up samplesPerDispatch samples, else 1;
+    /// N >= 1: N in every dispatch (tests, benchmarks). The image is the same bits either way.
+    std::uint32_t pixelsPerInvocation = 0;
     /// Automatic samples per dispatch also keep the slowest dispatch (device timestamps) at about
     /// this many seconds. < 0: Renderer::kTargetDispatchSeconds on a GPU, no time limit on a CPU
     /// device (lavapipe: no watchdog, and fewer, longer dispatches are faster: measured,

@@ -84,7 +84,9 @@ struct Renderer::Impl {
     std::vector<std::unique_ptr<GpuBuffer>> shared;  ///< per binding; null for the per-pixel ones
     std::vector<BandBuffers> bands;
     std::vector<vk::raii::BufferView> views;  ///< the texel buffers' views
-    std::unique_ptr<ComputePipeline> pipeline;
+    std::unique_ptr<ComputePipeline> pipeline;       // one pixel per invocation (PIXEL_SLOTS false)
+    std::unique_ptr<ComputePipeline> slotPipeline;   // several (PIXEL_SLOTS true): made when first needed
+    ComputePipelineDesc desc;                         // what both are made from
     GpuBuffer& counters() { return *shared.at(VKP_BINDING_COUNTERS); }
     /// Timestamps around every dispatch of a submission (submitSamples); grown on demand. Null
     /// where the compute queue has no timestamps (DeviceInfo::timestampValidBits 0).
@@ -100,6 +102,8 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
       width_(arrays.width),
       height_(arrays.height),
       spd_(options.samplesPerDispatch ? options.samplesPerDispatch : 1),
+      pixelsPerInvocation_(options.pixelsPerInvocation),
+      cpuDevice_(device.info().kind == DeviceKind::Cpu),
       autoSpd_(options.samplesPerDispatch == 0),
       targetDispatch_(options.targetDispatchSeconds >= 0.0 ? options.targetDispatchSeconds
                       : device.info().kind == DeviceKind::Cpu ? 0.0
@@ -158,19 +162,49 @@ Renderer::Renderer(VulkanDevice& device, const GpuArrays& arrays, const RenderOp
     desc.specConstants = features_.specConstants();
     desc.specializeOnHost = options.specializeOnHost;
     desc.descriptorSets = std::uint32_t(impl_->bands.size());
-    impl_->pipeline = std::make_unique<ComputePipeline>(device, desc);
+    impl_->desc = desc;
     impl_->views.reserve(std::size(kKernelBindings));  // views are bound by handle below
     for (const KernelBinding& b : kKernelBindings)
         if (b.kind == BindingKind::UniformTexelBuffer) impl_->views.push_back(impl_->shared.at(b.binding)->texelView(texelFormat(b.format)));
+    // A forced pixel count needs only the pipeline that takes several pixels.
+    if (pixelsPerInvocation_ > 1) slotPipeline();
+    else impl_->pipeline = makePipeline(false);
+    device.instance().throwIfValidationMessages("while setting up the renderer");
+}
+
+std::unique_ptr<ComputePipeline> Renderer::makePipeline(bool pixelSlots) {
+    ComputePipelineDesc desc = impl_->desc;
+    Features f = features_;
+    f.pixelSlots = pixelSlots;
+    desc.specConstants = f.specConstants();
+    auto pipeline = std::make_unique<ComputePipeline>(*dev_, desc);
     for (std::uint32_t set = 0; set < impl_->bands.size(); ++set) {
         std::size_t view = 0;
         for (const KernelBinding& b : kKernelBindings) {
-            if (b.kind == BindingKind::UniformTexelBuffer) impl_->pipeline->bindTexelView(b.binding, *impl_->views[view++], set);
-            else if (isPerPixelBinding(b.binding)) impl_->pipeline->bindBuffer(b.binding, impl_->bands[set].at(b.binding).buffer(), set);
-            else impl_->pipeline->bindBuffer(b.binding, impl_->shared.at(b.binding)->buffer(), set);
+            if (b.kind == BindingKind::UniformTexelBuffer) pipeline->bindTexelView(b.binding, *impl_->views[view++], set);
+            else if (isPerPixelBinding(b.binding)) pipeline->bindBuffer(b.binding, impl_->bands[set].at(b.binding).buffer(), set);
+            else pipeline->bindBuffer(b.binding, impl_->shared.at(b.binding)->buffer(), set);
         }
     }
-    device.instance().throwIfValidationMessages("while setting up the renderer");
+    return pipeline;
+}
+
+ComputePipeline& Renderer::slotPipeline() {
+    if (!impl_->slotPipeline) impl_->slotPipeline = makePipeline(true);
+    return *impl_->slotPipeline;
+}
+
+std::uint32_t Renderer::pixelsPerInvocation(std::uint32_t count) const {
+    if (pixelsPerInvocation_ > 0) return pixelsPerInvocation_;
+    // Automatic: only on a CPU device (lavapipe), where a SIMD batch of 8 lanes runs until its
+    // longest path ends, so one sample per invocation leaves most lanes idle for most passes
+    // (docs/performance.md "Dispatch size"). A GPU keeps one pixel per invocation, and with it
+    // its occupancy.
+    // And only where a dispatch of spd_ samples per pixel would take longer than a submission
+    // should (the last submission's time per sample says so): a small image's submissions that
+    // happen to hold few samples (the last before a dump or `--time`'s end) keep the one pipeline.
+    if (!cpuDevice_ || count >= spd_ || secondsPerSample_ * spd_ < kSlotSeconds) return 1;
+    return (spd_ + count - 1) / count;
 }
 
 Renderer::~Renderer() = default;
@@ -203,7 +237,12 @@ void Renderer::submitSamples(std::uint32_t count) {
     // ComputePipeline::recordDispatch): what every dispatch took on the device.
     const DeviceInfo& info = dev_->info();
     const bool timed = info.timestampValidBits > 0 && info.timestampPeriodNs > 0.0;
-    const std::uint32_t planned = std::uint32_t(impl_->bands.size()) * ((count + spd_ - 1) / spd_);
+    const std::uint32_t slots = pixelsPerInvocation(count);
+    ComputePipeline& pipeline = slots > 1 || !impl_->pipeline ? slotPipeline() : *impl_->pipeline;
+    maxSlots_ = std::max(maxSlots_, slots);
+    // Samples per pixel of one dispatch: with several pixels per invocation, all of them at once.
+    const std::uint32_t perPixel = slots > 1 ? std::min(count, spd_) : spd_;
+    const std::uint32_t planned = std::uint32_t(impl_->bands.size()) * ((count + perPixel - 1) / perPixel);
     if (timed && impl_->timestampCapacity < planned + 1) {
         impl_->timestampCapacity = std::max(planned + 1, 2 * impl_->timestampCapacity);
         vk::QueryPoolCreateInfo qi{};
@@ -233,16 +272,24 @@ void Renderer::submitSamples(std::uint32_t count) {
                 push.band = glm::uvec4(bb.band.firstRow, bb.band.rows, tiles, linearTiles_ ? 1u : tileStride(tiles));
                 // With adaptive sampling: the band's list of active pixels, one per invocation, slots scrambled.
                 std::uint32_t dispatchX = groupsX, dispatchY = groupsY;
+                std::uint32_t groups = tiles;
                 if (adaptive()) {
                     if (bb.activeCount == 0) continue;
-                    const std::uint32_t groups = (bb.activeCount + perGroup - 1) / perGroup;
+                    groups = (bb.activeCount + perGroup - 1) / perGroup;
                     dispatchX = std::min<std::uint32_t>(groups, kAdaptiveGroupsPerRow);
                     dispatchY = (groups + dispatchX - 1) / dispatchX;
                     push.adaptive = glm::uvec4(bb.activeCount, groups, tileStride(groups), dispatchX);
                 }
-                for (std::uint32_t s = 0; s < count; s += spd_) {
-                    push.batch = glm::uvec4(done_ + s, std::min(spd_, count - s), 0, 0);
-                    impl_->pipeline->recordDispatch(cmd, dispatchX, dispatchY, &push, sizeof(push), set);
+                // Several pixels per invocation: workgroup g takes the band's (virtual) workgroups
+                // g * slots to g * slots + slots - 1, one after the other (shaders/pathtrace.comp).
+                if (slots > 1) {
+                    const std::uint32_t real = (groups + slots - 1) / slots;
+                    dispatchX = std::min<std::uint32_t>(real, kAdaptiveGroupsPerRow);
+                    dispatchY = (real + dispatchX - 1) / dispatchX;
+                }
+                for (std::uint32_t s = 0; s < count; s += perPixel) {
+                    push.batch = glm::uvec4(done_ + s, std::min(perPixel, count - s), slots, 0);
+                    pipeline.recordDispatch(cmd, dispatchX, dispatchY, &push, sizeof(push), set);
                     ++dispatches;
                     if (timed) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *impl_->timestamps, dispatches);
                 }
@@ -265,6 +312,7 @@ void Renderer::submitSamples(std::uint32_t count) {
         }
     }
     if (submissions_ > 1 && dispatches > 0) longestDispatch_ = std::max(longestDispatch_, slowest);
+    if (submissions_ > 1 && count > 0) secondsPerSample_ = seconds / count;  // the first holds the JIT
     done_ += count;
     taken_ += std::uint64_t(count) * active_;
     dev_->instance().throwIfValidationMessages("while rendering");
@@ -278,7 +326,7 @@ void Renderer::submitSamples(std::uint32_t count) {
         // targetDispatch_, so that no dispatch approaches a watchdog's seconds. At most doubling
         // per step, 1 to 8 samples.
         constexpr double kTargetPasses = 30000.0;
-        const std::uint32_t perDispatch = std::min(spd_, count);
+        const std::uint32_t perDispatch = slots * std::min(perPixel, count);  // samples per invocation
         const double perSample = double(std::max<std::uint32_t>(maxPasses_, 1)) / perDispatch;
         double fit = kTargetPasses / perSample;
         if (timed && targetDispatch_ > 0.0 && submissions_ > 1 && slowest > 0.0)

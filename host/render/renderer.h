@@ -14,6 +14,7 @@
 namespace vkp {
 
 class VulkanDevice;
+class ComputePipeline;
 struct GpuArrays;
 struct RenderState;
 struct DeviceLimits;
@@ -96,6 +97,15 @@ public:
     /// On a GPU, automatic samples per dispatch (RenderOptions::samplesPerDispatch 0) aim the
     /// slowest dispatch at this many seconds: tens of milliseconds, far from any watchdog.
     static constexpr double kTargetDispatchSeconds = 0.1;
+    /// On a CPU device, an image where a dispatch of samplesPerDispatch() samples per pixel would
+    /// take longer than this (seconds, from the last submission) has dispatches that add fewer
+    /// samples per pixel take several pixels per invocation (RenderOptions::pixelsPerInvocation).
+    static constexpr double kSlotSeconds = 0.5;
+    /// Pixels per invocation of a submission that adds `count` samples per pixel (1 unless the rule
+    /// above or RenderOptions::pixelsPerInvocation says otherwise).
+    std::uint32_t pixelsPerInvocation(std::uint32_t count) const;
+    /// The most pixels one invocation took in any submission so far.
+    std::uint32_t maxPixelsPerInvocation() const { return maxSlots_; }
     /// Bands of rows the image is rendered in (1 unless it exceeds the device's binding range).
     std::uint32_t bandCount() const;
 
@@ -116,7 +126,10 @@ private:
     VulkanDevice* dev_;
     Features features_;
     std::uint32_t width_, height_, spd_;
+    std::uint32_t pixelsPerInvocation_;  // RenderOptions::pixelsPerInvocation
+    bool cpuDevice_;
     bool autoSpd_;
+    double secondsPerSample_ = 0.0;  // the last submission's seconds per sample per pixel (not the first's)
     double targetDispatch_;  ///< seconds; 0: no time limit (RenderOptions::targetDispatchSeconds)
     bool linearTiles_;
     std::uint64_t sceneBytes_ = 0;
@@ -130,6 +143,11 @@ private:
     std::uint32_t adaptiveMinSpp_ = 0;
     std::vector<std::uint8_t> activeMask_;
     void submitSamples(std::uint32_t count);
+    std::uint32_t maxSlots_ = 1;
+    /// The kernel's pipeline with PIXEL_SLOTS as given, its descriptor sets bound to every buffer.
+    std::unique_ptr<ComputePipeline> makePipeline(bool pixelSlots);
+    /// The PIXEL_SLOTS pipeline, made when first needed (a second JIT: only for images that use it).
+    ComputePipeline& slotPipeline();
     /// Fault injection for tests (docs/farm.md "Faults"): with VKPATH_INJECT_DEVICE_LOST=N in the
     /// environment, the Nth submission of samples fails as a lost device makes it fail.
     std::uint32_t injectDeviceLostAt_ = 0, submissions_ = 0;

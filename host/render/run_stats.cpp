@@ -114,6 +114,7 @@ RunStats runStats(const RenderJob& job, const Features& kernel, const SessionRes
     st.secondsFirstBatch = r.firstBatchSeconds;
     st.secondsRender = r.renderSeconds;
     st.secondsLongestDispatch = r.longestDispatchSeconds;
+    st.pixelsPerInvocation = r.pixelsPerInvocation;
     st.secondsToFirstSample = r.firstSampleAt;
     st.secondsCheckpoints = r.checkpointSeconds;
     st.secondsOutput = r.outputSeconds;
@@ -149,6 +150,7 @@ std::string runStatsJson(const RunStats& s) {
     w.str("variant", s.variant);
     w.raw("variant_full", s.fullVariant ? "true" : "false");
     w.raw("samples_per_dispatch", num(std::uint64_t(s.samplesPerDispatch)));
+    w.raw("pixels_per_invocation", num(std::uint64_t(s.pixelsPerInvocation)));
     w.raw("spp_requested", num(std::uint64_t(s.sppRequested)));
     w.raw("time_limit", num(s.timeLimit));
     w.raw("spp", num(std::uint64_t(s.spp)));

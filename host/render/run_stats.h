@@ -42,6 +42,7 @@ struct RunStats {
     double secondsUpload = 0.0;       ///< Renderer construction: buffers, upload, pipeline creation
     double secondsFirstBatch = 0.0;   ///< the first batch (1 spp): includes the shader JIT
     double secondsRender = 0.0;       ///< every batch, the first included
+    std::uint32_t pixelsPerInvocation = 1;  ///< the most pixels one invocation took (Renderer::maxPixelsPerInvocation)
     double secondsLongestDispatch = 0.0;  ///< the longest dispatch after the first submission (Renderer::longestDispatchSeconds)
     double secondsToFirstSample = 0.0;  ///< process start to the end of the first batch
     double secondsCheckpoints = 0.0;  ///< image read-backs + error rows

@@ -209,6 +209,7 @@ SessionResult runSession(Renderer& renderer, const SessionOptions& o, Clock::tim
         const RenderCounters c = renderer.counters();
         if (batches == 1) res.firstBatchRays = c.rays;
         res.longestDispatchSeconds = renderer.longestDispatchSeconds();
+        res.pixelsPerInvocation = renderer.maxPixelsPerInvocation();
         const double eta = double(o.spp - now) * perSample;
         progress.update(now - first, res.renderSeconds, double(renderer.samplesTaken()), double(c.rays), eta,
                         now == o.spp || renderer.activePixels() == 0);

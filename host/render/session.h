@@ -94,6 +94,7 @@ struct SessionResult {
     double firstSampleAt = 0.0;      ///< wall time since process start when the first batch ended (s)
     std::uint64_t firstBatchRays = 0;  ///< rays traced by the first batch
     double longestDispatchSeconds = 0.0;  ///< Renderer::longestDispatchSeconds at the end
+    std::uint32_t pixelsPerInvocation = 1;  ///< Renderer::maxPixelsPerInvocation at the end
     double checkpointSeconds = 0.0;  ///< time spent in checkpoints: image read-back + onCheckpoint (s)
     std::uint32_t checkpoints = 0;   ///< number of onCheckpoint calls
     double outputSeconds = 0.0;      ///< time spent writing dumps and the final images (s)

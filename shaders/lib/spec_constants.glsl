@@ -48,6 +48,11 @@ layout(constant_id = VKP_SPEC_HAS_MOTION) const bool HAS_MOTION = true;
 // Feature images (`--aov`, shared/aov.h): every sample adds the albedo and normal of its first
 // non-specular vertex and the position of its first hit to the pixel's AOV sums.
 layout(constant_id = VKP_SPEC_HAS_AOV) const bool HAS_AOV = true;
+// An invocation may trace the samples of several pixels, one after the other (push.batch.z
+// slots): the path that ends a pixel's samples is followed by the next pixel's first, so lanes stay
+// busy when a dispatch adds few samples per pixel (a large image; host/render/renderer.cpp). The
+// switch from one pixel's sums to the next's would otherwise run, masked, in every pass.
+layout(constant_id = VKP_SPEC_PIXEL_SLOTS) const bool PIXEL_SLOTS = true;
 // Workgroup size: 8x8 by default (`--workgroup`), one pixel per invocation.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1, local_size_x_id = VKP_SPEC_WORKGROUP_X,
        local_size_y_id = VKP_SPEC_WORKGROUP_Y) in;

@@ -147,7 +147,9 @@ struct GpuFrame {
 // active-pixel buffer: workgroup g (= y * adaptive.w + x) takes the entries of slot
 // (g * adaptive.z) mod adaptive.y, so lavapipe's per-thread runs of workgroups spread over the band.
 struct GpuPush {
-    uvec4 batch;     // x: sampleStart, y: sampleCount, z, w: reserved
+    uvec4 batch;     // x: sampleStart, y: sampleCount (per pixel), z: pixels per invocation (>= 1;
+                     // > 1 only with PIXEL_SLOTS: workgroup g takes virtual workgroups g * z .. g * z + z - 1),
+                     // w: reserved
     uvec4 adaptive;  // x: active pixels listed (0: adaptive sampling off, every pixel of the band),
                      // y: workgroups with work, z: slot stride (coprime with y, y * z < 2^32),
                      // w: workgroups per row of the dispatch

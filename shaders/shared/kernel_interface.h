@@ -62,6 +62,7 @@
 #define VKP_SPEC_HAS_SOLID_TEXTURES 22     // bool: some material has a JSON texture (shared/solid_texture.h)
 #define VKP_SPEC_HAS_MOTION 23             // bool: some primitive moves over the shutter interval (GpuMotion)
 #define VKP_SPEC_HAS_AOV 24                // bool: add every sample's feature values to VKP_BINDING_AOV (`--aov`)
-#define VKP_SPEC_COUNT 25
+#define VKP_SPEC_PIXEL_SLOTS 25           // bool: an invocation may take several pixels (push.batch.z > 1)
+#define VKP_SPEC_COUNT 26
 
 #endif

@@ -191,6 +191,79 @@ TEST(GpuRender, DispatchTimeTargetHoldsTheSamplesPerDispatchDown) {
     EXPECT_EQ(0, std::memcmp(sums[0].sum.data(), sums[1].sum.data(), sums[0].sum.size() * sizeof(double)));
 }
 
+// Several pixels per invocation (RenderOptions::pixelsPerInvocation: the PIXEL_SLOTS pipeline,
+// shaders/pathtrace.comp) change which invocation traces a pixel's samples, never the samples or
+// their order: the sums, the feature sums and adaptive sampling's choices are those of one pixel
+// per invocation, whatever the slots, the samples per dispatch and the workgroup size. 23 x 17
+// pixels: neither the tiles nor the active pixels divide by the slots.
+TEST(GpuRender, SeveralPixelsPerInvocationGiveTheSameSamples) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-book3.json");  // glass: paths of very different lengths
+    scene.camera.width = 23;
+    scene.camera.height = 17;
+    const bool exactAovs = dev.info().kind == DeviceKind::Cpu;  // rounds like the host (CpuDevicesRoundLikeTheHost)
+    for (double adaptive : {0.0, 0.5}) {
+        auto render = [&](std::uint32_t slots, std::uint32_t spd, std::uint32_t wx, std::uint32_t wy) {
+            RenderOptions o;
+            o.pixelsPerInvocation = slots;
+            o.samplesPerDispatch = spd;
+            o.workgroupX = wx;
+            o.workgroupY = wy;
+            o.aov = true;
+            o.adaptiveThreshold = adaptive;
+            o.adaptiveMinSpp = 4;
+            TestRender r = makeRender(dev, scene, o);
+            for (std::uint32_t n : {1u, 5u, 18u}) r.renderer->addSamples(n);  // 24 in submissions of several sizes
+            EXPECT_EQ(r.renderer->maxPixelsPerInvocation(), slots);
+            return std::tuple{r.renderer->readSums(), r.renderer->readAovSums(), r.renderer->activePixels()};
+        };
+        const auto [sums, aovs, active] = render(1, 4, 0, 0);
+        ASSERT_TRUE(litAndNotConstant(sums.mean(), "cornell-book3 23x17"));
+        if (adaptive > 0) EXPECT_LT(active, 23u * 17u) << "adaptive sampling must stop some pixels";
+        for (const auto& [slots, spd, wx, wy] : {std::tuple{2u, 4u, 0u, 0u}, std::tuple{3u, 1u, 0u, 0u},
+                                                std::tuple{7u, 2u, 4u, 4u}, std::tuple{64u, 1u, 0u, 0u}}) {
+            const std::string what = std::to_string(slots) + " pixels per invocation, " + std::to_string(spd) +
+                                     " samples per dispatch" + (wx ? ", 4x4" : "") + (adaptive > 0 ? ", adaptive" : "");
+            const auto [s, a, act] = render(slots, spd, wx, wy);
+            EXPECT_TRUE(sameSamples(dev, sums, s, what));  // the PIXEL_SLOTS pipeline is another compiled kernel
+            EXPECT_EQ(act, active) << what;
+            ASSERT_EQ(a.size(), aovs.size());
+            if (exactAovs) EXPECT_EQ(0, std::memcmp(a.data(), aovs.data(), a.size() * sizeof(float))) << what;
+        }
+    }
+}
+
+// The automatic choice (RenderOptions::pixelsPerInvocation 0): a small image keeps one pixel per
+// invocation, even in a submission of one sample; on a CPU device an image where one dispatch of
+// the samples per dispatch would outlast Renderer::kSlotSeconds takes several in its one-sample
+// submissions, as a session's large renders have them. 2048x1024 pixels of the Cornell box take
+// 0.9 s per sample on lavapipe with 2 threads, so the rule holds on CPUs up to ~14x this
+// machine's (docs/performance.md "Dispatch size"). A GPU keeps one pixel per invocation.
+TEST(GpuRender, LargeImagesTakeSeveralPixelsPerInvocationOnACpuDevice) {
+    VKP_REQUIRE_DEVICE(dev);
+    Scene scene = loadSceneJson(scenesDir() / "cornell-classic.json");
+    scene.camera.width = 32;
+    scene.camera.height = 32;
+    {
+        TestRender r = makeRender(dev, scene, RenderOptions{});
+        for (std::uint32_t n : {1u, 8u, 8u, 8u, 1u, 1u}) r.renderer->addSamples(n);
+        EXPECT_EQ(r.renderer->samplesPerDispatch(), 8u);
+        EXPECT_EQ(r.renderer->maxPixelsPerInvocation(), 1u) << "a 32x32 image's dispatches are short";
+    }
+    scene.camera.width = 2048;
+    scene.camera.height = 1024;
+    TestRender r = makeRender(dev, scene, RenderOptions{});
+    for (int k = 0; k < 5; ++k) r.renderer->addSamples(1);
+    if (dev.info().kind == DeviceKind::Cpu) {
+        EXPECT_GT(r.renderer->maxPixelsPerInvocation(), 1u);
+        EXPECT_EQ(r.renderer->pixelsPerInvocation(1), r.renderer->samplesPerDispatch());
+    } else {
+        EXPECT_EQ(r.renderer->maxPixelsPerInvocation(), 1u);
+    }
+    EXPECT_EQ(r.renderer->counters().loopGuard, 0u);
+    ASSERT_TRUE(litAndNotConstant(r.renderer->image(), "cornell-classic 2048x1024"));
+}
+
 // The workgroup size and the tile order only change which invocation computes a pixel, never its
 // samples: the sums are bit-identical, with and without adaptive sampling (whose packed list of
 // active pixels is laid out by workgroup size too). 21 x 13 pixels: no size divides it.
@@ -281,6 +354,13 @@ TEST(GpuRender, BitIdenticalAcrossBands) {
             EXPECT_EQ(0, std::memcmp(a.sumSq.data(), b.sumSq.data(), a.sumSq.size() * sizeof(double))) << what;
             EXPECT_EQ(one.renderer->activePixels(), banded.renderer->activePixels()) << what;
             if (adaptive > 0) EXPECT_LT(one.renderer->activePixels(), 40u * 37u) << "adaptive sampling must stop some pixels";
+            // Bands with several pixels per invocation (the slots stay within a band).
+            RenderOptions os = o;
+            os.pixelsPerInvocation = 3;
+            TestRender slotted = makeRender(dev, scene, os, &small);
+            slotted.renderer->addSamples(24);
+            EXPECT_TRUE(sameSamples(dev, a, slotted.renderer->readSums(), what + ", banded, 3 pixels per invocation"));
+            EXPECT_EQ(one.renderer->activePixels(), slotted.renderer->activePixels()) << what;
         }
     // With room for 40 rows the 3x5 workgroup splits too.
     small.maxStorageBufferRange = 40 * 40 * 32;

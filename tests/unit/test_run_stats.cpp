@@ -54,6 +54,7 @@ TEST(RunStats, RequiredKeysAndDerivedNumbers) {
     EXPECT_EQ(j["peak_rss_bytes"], 123456789);
     EXPECT_EQ(j["scene_buffer_bytes"], 4096);
     EXPECT_EQ(j["seconds_longest_dispatch"], 0.125);
+    EXPECT_EQ(j["pixels_per_invocation"], 1);
 }
 
 TEST(RunStats, NoRenderTimeGivesNullRatesAndErrorIsAnObject) {
