@@ -111,7 +111,8 @@ render options:
                           beside every output, or --denoise-output FILE
   --denoise-output FILE   where the denoised image goes (with --denoise)
   --denoise-dumps         denoise every dump too: frame-<spp>.denoised.<ext> (with --denoise)
-  --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 8)
+  --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 32 on a
+                            CPU device, <= 8 on a GPU)
   --pixels-per-invocation N  pixels one invocation takes in turn, 1-64 (default: automatic: on a
                             CPU device, several where a dispatch adds fewer samples per pixel than
                             --samples-per-dispatch, as in large images; the image is the same)

@@ -73,7 +73,8 @@ struct RenderOptions {
     /// Add every sample's feature values (albedo, normal, position: shared/aov.h) to per-pixel sums
     /// (`--aov`); the image's samples are unchanged.
     bool aov = false;
-    /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 8) as keep the busiest
+    /// Samples one dispatch adds per pixel; 0 = automatic: as many (up to 32 on a CPU device, 8 on a
+    /// GPU: Renderer::maxAutoSamplesPerDispatch) as keep the busiest
     /// invocation at half of lavapipe's loop budget, measured after every submission.
     std::uint32_t samplesPerDispatch = 0;
     /// Pixels one invocation takes, one after the other, in a dispatch that adds fewer samples per

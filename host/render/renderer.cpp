@@ -203,8 +203,11 @@ std::uint32_t Renderer::pixelsPerInvocation(std::uint32_t count) const {
     // And only where a dispatch of spd_ samples per pixel would take longer than a submission
     // should (the last submission's time per sample says so): a small image's submissions that
     // happen to hold few samples (the last before a dump or `--time`'s end) keep the one pipeline.
-    if (!cpuDevice_ || count >= spd_ || secondsPerSample_ * spd_ < kSlotSeconds) return 1;
-    return (spd_ + count - 1) / count;
+    // The samples of one invocation are then made up to min(spd_, kSlotSamples): more samples of
+    // one pixel need no slots, whose switch costs ~10 % per sample (docs/performance.md).
+    const std::uint32_t wanted = std::min(spd_, kSlotSamples);
+    if (!cpuDevice_ || count >= wanted || secondsPerSample_ * spd_ < kSlotSeconds) return 1;
+    return (wanted + count - 1) / count;
 }
 
 Renderer::~Renderer() = default;
@@ -324,14 +327,14 @@ void Renderer::submitSamples(std::uint32_t count) {
         // half of the 60,000-pass guard; and time does too: on a GPU aim the slowest dispatch
         // (device timestamps; the first submission's, which holds the shader JIT, left out) at
         // targetDispatch_, so that no dispatch approaches a watchdog's seconds. At most doubling
-        // per step, 1 to 8 samples.
+        // per step, 1 to maxAutoSamplesPerDispatch() samples.
         constexpr double kTargetPasses = 30000.0;
         const std::uint32_t perDispatch = slots * std::min(perPixel, count);  // samples per invocation
         const double perSample = double(std::max<std::uint32_t>(maxPasses_, 1)) / perDispatch;
         double fit = kTargetPasses / perSample;
         if (timed && targetDispatch_ > 0.0 && submissions_ > 1 && slowest > 0.0)
             fit = std::min(fit, targetDispatch_ * perDispatch / slowest);
-        spd_ = std::clamp<std::uint32_t>(std::uint32_t(std::clamp(fit, 1.0, 8.0)), 1, 2 * spd_);
+        spd_ = std::clamp<std::uint32_t>(std::uint32_t(std::clamp(fit, 1.0, double(maxAutoSamplesPerDispatch()))), 1, 2 * spd_);
     }
 }
 

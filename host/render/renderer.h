@@ -88,6 +88,10 @@ public:
     static constexpr std::uint32_t kAdaptiveStep = 16;
     /// Samples per pixel that the next dispatch adds.
     std::uint32_t samplesPerDispatch() const { return spd_; }
+    /// The most that automatic samples per dispatch reach: 32 on a CPU device, where a dispatch is
+    /// bounded by the session's submission anyway and longer ones waste fewer SIMD lanes at their
+    /// end (docs/performance.md "Dispatch size"); 8 on a GPU.
+    std::uint32_t maxAutoSamplesPerDispatch() const { return cpuDevice_ ? 32u : 8u; }
     /// Most loop passes one invocation made in the last addSamples (lavapipe stops loops at 65,535).
     std::uint32_t maxPassesLastBatch() const { return maxPasses_; }
     /// The longest dispatch so far, in seconds, the first submission's (shader JIT) left out: from
@@ -101,6 +105,8 @@ public:
     /// take longer than this (seconds, from the last submission) has dispatches that add fewer
     /// samples per pixel take several pixels per invocation (RenderOptions::pixelsPerInvocation).
     static constexpr double kSlotSeconds = 0.5;
+    /// ... and an invocation gets about this many samples in all (fewer if samplesPerDispatch() is).
+    static constexpr std::uint32_t kSlotSamples = 8;
     /// Pixels per invocation of a submission that adds `count` samples per pixel (1 unless the rule
     /// above or RenderOptions::pixelsPerInvocation says otherwise).
     std::uint32_t pixelsPerInvocation(std::uint32_t count) const;
