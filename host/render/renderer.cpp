@@ -274,18 +274,18 @@ void Renderer::submitSamples(std::uint32_t count) {
                 const std::uint32_t tiles = groupsX * groupsY;
                 push.band = glm::uvec4(bb.band.firstRow, bb.band.rows, tiles, linearTiles_ ? 1u : tileStride(tiles));
                 // With adaptive sampling: the band's list of active pixels, one per invocation, slots scrambled.
-                std::uint32_t dispatchX = groupsX, dispatchY = groupsY;
                 std::uint32_t groups = tiles;
                 if (adaptive()) {
                     if (bb.activeCount == 0) continue;
                     groups = (bb.activeCount + perGroup - 1) / perGroup;
-                    dispatchX = std::min<std::uint32_t>(groups, kAdaptiveGroupsPerRow);
-                    dispatchY = (groups + dispatchX - 1) / dispatchX;
-                    push.adaptive = glm::uvec4(bb.activeCount, groups, tileStride(groups), dispatchX);
+                    push.adaptive = glm::uvec4(bb.activeCount, groups, tileStride(groups), 0);
                 }
-                // Several pixels per invocation: workgroup g takes the band's (virtual) workgroups
-                // g * slots to g * slots + slots - 1, one after the other (shaders/pathtrace.comp).
-                if (slots > 1) {
+                // The dispatch: the band's tiles as they lie, or else (a packed list, several
+                // pixels per invocation: workgroup g takes the virtual workgroups g * slots to
+                // g * slots + slots - 1, shaders/pathtrace.comp) rows of at most
+                // kAdaptiveGroupsPerRow workgroups; the kernel numbers them by gl_NumWorkGroups.
+                std::uint32_t dispatchX = groupsX, dispatchY = groupsY;
+                if (adaptive() || slots > 1) {
                     const std::uint32_t real = (groups + slots - 1) / slots;
                     dispatchX = std::min<std::uint32_t>(real, kAdaptiveGroupsPerRow);
                     dispatchY = (real + dispatchX - 1) / dispatchX;

@@ -144,7 +144,7 @@ struct GpuFrame {
 // of one band of rows (host/render/gpu_arrays.h planBands; the whole image unless its
 // accumulation buffers exceed the device's storage-buffer range). With adaptive sampling
 // (host/render/adaptive.h) a dispatch covers only the band's active pixels, listed in the
-// active-pixel buffer: workgroup g (= y * adaptive.w + x) takes the entries of slot
+// active-pixel buffer: workgroup g (= y * gl_NumWorkGroups.x + x) takes the entries of slot
 // (g * adaptive.z) mod adaptive.y, so lavapipe's per-thread runs of workgroups spread over the band.
 struct GpuPush {
     uvec4 batch;     // x: sampleStart, y: sampleCount (per pixel), z: pixels per invocation (>= 1;
@@ -152,7 +152,7 @@ struct GpuPush {
                      // w: reserved
     uvec4 adaptive;  // x: active pixels listed (0: adaptive sampling off, every pixel of the band),
                      // y: workgroups with work, z: slot stride (coprime with y, y * z < 2^32),
-                     // w: workgroups per row of the dispatch
+                     // w: reserved (0)
     uvec4 band;      // x: first row, y: rows, z: tiles (workgroups) in the band, w: tile stride
                      // (coprime with z, z * w < 2^32): workgroup g renders tile (g * w) mod z
 };
