@@ -23,12 +23,14 @@ spheres-book1, env-sky (environment-lit) and a generated dense-mesh scene) it
   7. where Blender is installed and the scene has a Cycles twin (cycles.py: cornell-classic), the time
      to Cycles' error (issue 18): Cycles renders CYCLES_SPP spp, timed by its own render call; vkpath
      renders until its MSE against the same Cycles reference is as low; the ratio of the times
-     (target: at most 0.4) is reported, never failed;
+     (target: at most 0.4) is reported, never failed; with --cycles-pairs N, N pairs alternating
+     which renders first, and the median ratio with its interval (met when the interval's upper end
+     is at most 0.4);
 and writes OUT/<scene>.csv, OUT/summary.md, OUT/summary.json and OUT/relmse_vs_time.png.
 
 Usage: bench.py [--quick] --vkpath BUILD/vkpath [--embree BUILD/tests/bench/embree_reference | --no-embree]
                 [--out DIR] [--cache DIR] [--scenes a,b] [--refresh-references] [--ref-budget S]
-                [--curve-seconds S] [--embree-seconds S] [--embree-pairs N] [--parts curves,scaling,settings,embree,denoise,cycles]
+                [--curve-seconds S] [--embree-seconds S] [--embree-pairs N] [--cycles-pairs N] [--parts curves,scaling,settings,embree,denoise,cycles]
 Exit status: 0 when every check passed, 1 when one failed (listed in summary.md), 77 when
 python3-matplotlib or python3-numpy is missing (CTest reports the test as skipped).
 """
@@ -344,37 +346,70 @@ def bench_cycles(vk, cy, name, scene, size, cfg, args, runs, env, startup, failu
     """The time to Cycles' error (cycles.py): Cycles' CYCLES_SPP-spp render and its render time, then
     vkpath (default sampler, same thread count) with --reference set to the same Cycles reference
     until at least 3x Cycles' time; vkpath's time to Cycles' MSE from its error log (seconds from
-    process start). Cycles' and vkpath's image means against the reference's are reported too (a
-    bias between the renderers would show there and hold vkpath's error above Cycles')."""
+    process start). With --cycles-pairs N, N such pairs, alternating which renderer goes first (a
+    vkpath-first pair's budget is the previous Cycles time's), combined by cycles.combine: the
+    median ratio, its interval and the verdict. Cycles' and vkpath's image means against the
+    reference's are reported too (the first pair's; a bias between the renderers would show there
+    and hold vkpath's error above Cycles')."""
     W, H = size
     if W != H:
         raise cycles.CyclesError("the Cornell twin renders square images only, not %dx%d" % (W, H))
     threads = os.cpu_count() or 1
     ref = cycles.reference(cy, name, cycles.TWINS[name], W, cfg["cycles_ref_spp"], threads, args.cache, log)
-    image, seconds = cy.render(cycles.TWINS[name], os.path.join(runs, "cycles-run.pfm"), W, CYCLES_SPP,
-                               cycles.RUN_SEED, threads)
-    mse = metrics.mse(image, ref["image"])
-    logf = os.path.join(runs, "cycles-pair-vkpath.csv")
-    budget = 3.0 * seconds + startup + 2.0
-    st = vk.render(scene, runs, "cycles-pair-vkpath", ["--width", W, "--height", H, "--spp", BIG_SPP, "--time",
-                                                       "%.3f" % budget, "--reference", ref["path"], "--error-log", logf,
-                                                       "-o", "cycles-pair-vkpath.pfm"], dict(env, LP_NUM_THREADS=threads))
-    rows = vkrun.read_error_log(logf)
-    out = cycles.result(mse, seconds, [(r["seconds"], r["rmse"] ** 2) for r in rows], ref["floor_mse"])
     ref_mean = ref["image"].reshape(-1, 3).mean(axis=0)
-    vk_mean = numpy.array([rows[-1]["mean_r"], rows[-1]["mean_g"], rows[-1]["mean_b"]])
-    out.update(blender=cy.version, threads=threads, size="%dx%d" % (W, H), cycles_spp=CYCLES_SPP,
-               reference_spp=ref["spp"], vkpath_spp=st["spp"], vkpath_samples_per_second=steady(st),
-               vkpath_mean_rel_diff=float(numpy.max(numpy.abs(vk_mean / ref_mean - 1.0))),
-               cycles_mean_rel_diff=float(numpy.max(numpy.abs(image.reshape(-1, 3).mean(axis=0) / ref_mean - 1.0))))
-    for bad in ("nonfinite_samples", "loop_guard_paths"):
-        if st[bad]:
-            failures.append("%s/cycles pair: %d %s" % (name, st[bad], bad))
-    log("  time to Cycles' error (MSE %.3g at %d spp in %.2f s): vkpath %s, ratio %s (target %.1f); image means "
-        "within %.2f%% (vkpath) and %.2f%% (Cycles) of the reference's" % (
-            mse, CYCLES_SPP, seconds, "%.2f s" % out["vkpath_seconds"] if out["vkpath_seconds"] else "not reached",
-            "%.2fx" % out["ratio"] if out["ratio"] is not None else "—", cycles.TARGET,
-            100 * out["vkpath_mean_rel_diff"], 100 * out["cycles_mean_rel_diff"]))
+    logf = os.path.join(runs, "cycles-pair-vkpath.csv")
+    pairs = args.cycles_pairs
+    last = {}
+
+    def run_cycles():
+        image, seconds = cy.render(cycles.TWINS[name], os.path.join(runs, "cycles-run.pfm"), W, CYCLES_SPP,
+                                   cycles.RUN_SEED, threads)
+        last.update(image=image, seconds=seconds, mse=metrics.mse(image, ref["image"]))
+
+    def run_vkpath():
+        budget = 3.0 * last["seconds"] + startup + 2.0
+        st = vk.render(scene, runs, "cycles-pair-vkpath", ["--width", W, "--height", H, "--spp", BIG_SPP, "--time",
+                                                           "%.3f" % budget, "--reference", ref["path"], "--error-log",
+                                                           logf, "-o", "cycles-pair-vkpath.pfm"],
+                       dict(env, LP_NUM_THREADS=threads))
+        for bad in ("nonfinite_samples", "loop_guard_paths"):
+            if st[bad]:
+                failures.append("%s/cycles pair: %d %s" % (name, st[bad], bad))
+        return st, vkrun.read_error_log(logf)
+
+    results = []
+    for i in range(pairs):
+        cycles_first = i % 2 == 0  # the first pair runs Cycles first: vkpath's budget needs its time
+        if cycles_first:
+            run_cycles()
+            st, rows = run_vkpath()
+        else:
+            st, rows = run_vkpath()
+            run_cycles()
+        out = cycles.result(last["mse"], last["seconds"], [(r["seconds"], r["rmse"] ** 2) for r in rows],
+                            ref["floor_mse"])
+        vk_mean = numpy.array([rows[-1]["mean_r"], rows[-1]["mean_g"], rows[-1]["mean_b"]])
+        out.update(blender=cy.version, threads=threads, size="%dx%d" % (W, H), cycles_spp=CYCLES_SPP,
+                   reference_spp=ref["spp"], vkpath_spp=st["spp"], vkpath_samples_per_second=steady(st),
+                   vkpath_mean_rel_diff=float(numpy.max(numpy.abs(vk_mean / ref_mean - 1.0))),
+                   cycles_mean_rel_diff=float(numpy.max(numpy.abs(last["image"].reshape(-1, 3).mean(axis=0) /
+                                                                   ref_mean - 1.0))))
+        results.append(out)
+        log("  %stime to Cycles' error (MSE %.3g at %d spp in %.2f s): vkpath %s, ratio %s (target %.1f); image means "
+            "within %.2f%% (vkpath) and %.2f%% (Cycles) of the reference's" % (
+                "pair %d of %d (%s first): " % (i + 1, pairs, "Cycles" if cycles_first else "vkpath") if pairs > 1
+                else "", last["mse"], CYCLES_SPP, last["seconds"],
+                "%.2f s" % out["vkpath_seconds"] if out["vkpath_seconds"] else "not reached",
+                "%.2fx" % out["ratio"] if out["ratio"] is not None else "—", cycles.TARGET,
+                100 * out["vkpath_mean_rel_diff"], 100 * out["cycles_mean_rel_diff"]))
+    if pairs == 1:
+        return results[0]
+    out = cycles.combine(results)
+    iv = out["ratio_interval"]
+    log("  time to Cycles' error: %s, median of %d pairs%s: %s" % (
+        "%.3fx" % out["ratio"] if out["ratio"] is not None else "—", pairs,
+        ", %.0f %% interval %.3f-%.3fx" % (100 * out["ratio_interval_coverage"], iv[0], iv[1]) if iv else "",
+        out["verdict"]))
     return out
 
 
@@ -522,6 +557,9 @@ def main():
     ap.add_argument("--no-embree", action="store_true", help="no Embree reference, no ratio to Embree")
     ap.add_argument("--embree-seconds", type=float,
                     help="seconds of rendering for the Embree reference and its vkpath pair (default: the scaling runs')")
+    ap.add_argument("--cycles-pairs", type=int, default=1,
+                    help="time to Cycles' error: N pairs of a Cycles and a vkpath render, alternating which goes "
+                         "first; the median ratio, its interval from 6 pairs on, and the target's verdict")
     ap.add_argument("--embree-pairs", type=int, default=1,
                     help="Embree/vkpath pairs per scene, alternating which runs first; from 6 on the summary gives "
                          "the median ratio with its distribution-free 95 %% interval (default %(default)s)")
@@ -555,6 +593,8 @@ def main():
             ap.error("unknown setting(s): " + ", ".join(sorted(unknown_settings)))
     if args.parts - set(PARTS):
         ap.error("unknown part(s): " + ", ".join(sorted(args.parts - set(PARTS))))
+    if args.cycles_pairs < 1:
+        ap.error("--cycles-pairs wants at least 1, got %d" % args.cycles_pairs)
     if args.embree_pairs < 1:
         ap.error("--embree-pairs wants at least 1, got %d" % args.embree_pairs)
     cfg = dict(MODES[mode])

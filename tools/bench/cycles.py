@@ -104,3 +104,36 @@ def result(cycles_mse, cycles_seconds, vkpath_points, floor_mse):
     return {"cycles_mse": cycles_mse, "cycles_rmse": float(np.sqrt(cycles_mse)), "cycles_seconds": cycles_seconds,
             "vkpath_seconds": t, "ratio": ratio, "target": TARGET, "target_met": ratio is not None and ratio <= TARGET,
             "floor_mse": floor_mse, "vkpath_final_mse": vkpath_points[-1][1] if vkpath_points else None}
+
+
+def combine(pairs):
+    """Several runs of the comparison (`result`'s dicts, one per pair of a Cycles and a vkpath render
+    in alternating order) as one: the median of the pairs' ratios and its distribution-free interval
+    (metrics.median_interval, from 6 pairs on), the medians of both renderers' times, and the
+    verdict on TARGET: "met" when the interval lies at or below it, "not met" when above, else
+    "undecided"; without an interval "no interval". A pair whose vkpath never reached Cycles' error
+    has no ratio: the verdict is then "not met" and the median is left out (None). The other fields
+    are the first pair's."""
+    if not pairs:
+        raise ValueError("combine: no pairs")
+    out = dict(pairs[0])
+    ratios = [p["ratio"] for p in pairs]
+    out.update(pairs=len(pairs), ratios=ratios,
+               cycles_seconds=float(np.median([p["cycles_seconds"] for p in pairs])))
+    if any(r is None for r in ratios):
+        out.update(ratio=None, vkpath_seconds=None, ratio_interval=None, ratio_interval_coverage=None,
+                   target_met=False, verdict="not met (Cycles' error not reached in %d of %d pairs)" % (
+                       sum(r is None for r in ratios), len(ratios)))
+        return out
+    median, lo, hi, coverage = metrics.median_interval(ratios)
+    out.update(ratio=median, vkpath_seconds=float(np.median([p["vkpath_seconds"] for p in pairs])),
+               ratio_interval=[lo, hi] if lo is not None else None, ratio_interval_coverage=coverage)
+    if lo is None:
+        out.update(target_met=None, verdict="no interval (%d pair%s)" % (len(pairs), "" if len(pairs) == 1 else "s"))
+    elif hi <= TARGET:
+        out.update(target_met=True, verdict="met")
+    elif lo > TARGET:
+        out.update(target_met=False, verdict="not met")
+    else:
+        out.update(target_met=None, verdict="undecided (the interval contains %.1fx)" % TARGET)
+    return out

@@ -314,16 +314,25 @@ def write_cycles_md(L, scenes, sampler):
              "fixed spp, timed by its own render call; vkpath (%s, same thread count) renders the scene with "
              "--reference set to the same Cycles reference; vkpath's time = seconds from process start when its "
              "MSE reaches Cycles' (interpolated between error-log rows). Both MSEs include the reference's own "
-             "floor alike. Target (issue 18): ratio at most 0.4. Mean diff.: the largest relative difference of a "
+             "floor alike. With several pairs (`--cycles-pairs N`, alternating which renders first) the times are "
+             "medians, the ratio is the median of the pairs' ratios and the interval its distribution-free 95 %% "
+             "interval (from 6 pairs on). Target (issue 18): ratio at most 0.4, met with pairs when the interval "
+             "lies at or below it. Mean diff.: the largest relative difference of a "
              "channel's image mean from the reference's." % sampler)
     L.append("")
-    columns = ["scene", "size", "threads", "Cycles spp", "Cycles MSE", "Cycles s", "vkpath s", "**ratio**", "target",
-               "reference spp (MSE floor)", "mean diff. vkpath / Cycles", "Blender"]
+    columns = ["scene", "size", "threads", "Cycles spp", "Cycles MSE", "Cycles s", "vkpath s", "**ratio**",
+               "pairs (interval)", "target", "reference spp (MSE floor)", "mean diff. vkpath / Cycles", "Blender"]
+
+    def pairs_cell(c):
+        iv = c.get("ratio_interval")
+        return "%d (%.2f-%.2fx)" % (c.get("pairs", 1), iv[0], iv[1]) if iv else "%d" % c.get("pairs", 1)
+
     write_table(L, columns, scenes, "cycles", 7, "not measured", lambda s, c: (
-        "| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
+        "| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
             s["name"], c["size"], c["threads"], c["cycles_spp"], c["cycles_mse"], c["cycles_seconds"],
             "%.2f" % c["vkpath_seconds"] if c["vkpath_seconds"] is not None else "not reached",
-            "%.2fx" % c["ratio"] if c["ratio"] is not None else "—", fmt_met(c["target_met"]), c["reference_spp"],
+            "%.2fx" % c["ratio"] if c["ratio"] is not None else "—", pairs_cell(c),
+            c.get("verdict") or fmt_met(c["target_met"]), c["reference_spp"],
             c["floor_mse"], 100 * c["vkpath_mean_rel_diff"], 100 * c["cycles_mean_rel_diff"], c["blender"])))
 
 

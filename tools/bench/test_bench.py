@@ -237,9 +237,44 @@ class CyclesTest(unittest.TestCase):
         report.write_cycles_md(lines, [ok, missing], "mis")
         text = "\n".join(lines)
         self.assertIn("## Time to Cycles' error", text)
-        self.assertIn("| cornell-classic | 256x256 | 2 | 256 | 0.002 | 10.00 | 5.00 | **0.50x** | not met | 8192 (1.5e-05) "
-                      "| 0.20% / 0.04% | Blender 3.4.1 |", text)
+        self.assertIn("| cornell-classic | 256x256 | 2 | 256 | 0.002 | 10.00 | 5.00 | **0.50x** | 1 | not met | 8192 "
+                      "(1.5e-05) | 0.20% / 0.04% | Blender 3.4.1 |", text)
         self.assertIn("| cornell-classic | 64x64 | | | | | | not measured: blender is not installed |", text)
+
+    def test_pairs_combine_to_a_median_interval_and_verdict(self):
+        pts = [(2.0, 0.005), (4.0, 0.0025), (8.0, 0.00125)]  # Cycles' MSE 0.002 reached at 5 s
+
+        def pairs(*cycles_seconds):
+            return [cycles.result(0.002, s, pts, 1e-5) for s in cycles_seconds]
+
+        # Seven pairs, ratios 5/s: 0.25 ... 0.357; the interval of 7 values at 95 %: the extremes.
+        met = cycles.combine(pairs(20.0, 18.0, 16.0, 15.0, 14.0, 19.0, 17.0))
+        self.assertEqual(met["pairs"], 7)
+        self.assertAlmostEqual(met["ratio"], 5.0 / 17.0)
+        self.assertAlmostEqual(met["ratio_interval"][0], 0.25)
+        self.assertAlmostEqual(met["ratio_interval"][1], 5.0 / 14.0)
+        self.assertAlmostEqual(met["cycles_seconds"], 17.0)
+        self.assertAlmostEqual(met["vkpath_seconds"], 5.0)
+        self.assertEqual((met["verdict"], met["target_met"]), ("met", True))
+        # An interval around 0.4 (5/13.5 = 0.37 ... 5/11 = 0.45): undecided; wholly above: not met.
+        self.assertEqual(cycles.combine(pairs(13.5, 13.0, 12.5, 12.0, 11.5, 11.0, 12.2))["verdict"],
+                         "undecided (the interval contains 0.4x)")
+        self.assertEqual(cycles.combine(pairs(10.0, 11.0, 12.0, 10.5, 11.5, 9.0, 8.0))["verdict"], "not met")
+        # Too few pairs for an interval; a pair that never reached Cycles' error.
+        self.assertEqual(cycles.combine(pairs(20.0, 18.0, 16.0))["verdict"], "no interval (3 pairs)")
+        missed = cycles.combine(pairs(20.0, 18.0) + [cycles.result(0.001, 20.0, pts, 1e-5)])
+        self.assertIsNone(missed["ratio"])
+        self.assertFalse(missed["target_met"])
+        self.assertEqual(missed["verdict"], "not met (Cycles' error not reached in 1 of 3 pairs)")
+        with self.assertRaises(ValueError):
+            cycles.combine([])
+        # The report shows the pairs, the interval and the verdict.
+        row = dict(met, blender="Blender 3.4.1", threads=2, size="256x256", cycles_spp=256, reference_spp=8192,
+                   vkpath_spp=900, vkpath_samples_per_second=1e6, vkpath_mean_rel_diff=0.002,
+                   cycles_mean_rel_diff=0.0004)
+        lines = []
+        report.write_cycles_md(lines, [{"name": "cornell-classic", "size": "256x256", "cycles": row}], "mis")
+        self.assertIn("| 17.00 | 5.00 | **0.29x** | 7 (0.25-0.36x) | met |", "\n".join(lines))
 
 
 RAW_LOG = """spp,seconds,rmse,relmse,mean_r,mean_g,mean_b
