@@ -126,14 +126,9 @@ def combine(pairs):
                        sum(r is None for r in ratios), len(ratios)))
         return out
     median, lo, hi, coverage = metrics.median_interval(ratios)
+    interval = [lo, hi] if lo is not None else None
+    verdict = metrics.interval_verdict(interval, len(pairs), TARGET, at_least=False)
     out.update(ratio=median, vkpath_seconds=float(np.median([p["vkpath_seconds"] for p in pairs])),
-               ratio_interval=[lo, hi] if lo is not None else None, ratio_interval_coverage=coverage)
-    if lo is None:
-        out.update(target_met=None, verdict="no interval (%d pair%s)" % (len(pairs), "" if len(pairs) == 1 else "s"))
-    elif hi <= TARGET:
-        out.update(target_met=True, verdict="met")
-    elif lo > TARGET:
-        out.update(target_met=False, verdict="not met")
-    else:
-        out.update(target_met=None, verdict="undecided (the interval contains %.1fx)" % TARGET)
+               ratio_interval=interval, ratio_interval_coverage=coverage, verdict=verdict,
+               target_met={"met": True, "not met": False}.get(verdict))
     return out

@@ -98,3 +98,19 @@ def needed_total_spp(floor_rel, spp_total, target_floor):
     """Total spp (both halves) for a relMSE floor of target_floor, given the floor floor_rel measured
     with spp_total samples per pixel: the floor falls as 1/spp."""
     return int(math.ceil(spp_total * floor_rel / target_floor))
+
+
+def interval_verdict(interval, pairs, target, at_least):
+    """Issue 18's verdict on a target from the interval of a median ratio (median_interval): with
+    at_least (the ratio must be >= target) "met" when the interval lies at or above the target, "not
+    met" when it lies below; otherwise (<= target) "met" at or below, "not met" above; "undecided"
+    when it contains the target; "no interval (N pairs)" without one (too few pairs): one run says
+    little on a machine whose speed drifts."""
+    if not interval:
+        return "no interval (%d pair%s)" % (pairs, "" if pairs == 1 else "s")
+    lo, hi = interval
+    if (lo >= target) if at_least else (hi <= target):
+        return "met"
+    if (hi < target) if at_least else (lo > target):
+        return "not met"
+    return "undecided (the interval contains %gx)" % target

@@ -5,6 +5,8 @@ import json
 import math
 import os
 
+import metrics
+
 CURVE_COLUMNS = ["scene", "sampler", "setting", "spp", "seconds", "rmse", "relmse", "relmse_minus_floor",
                  "rmse_minus_floor", "ref_limited", "mean_r", "mean_g", "mean_b", "rmse_denoised", "relmse_denoised",
                  "denoise_seconds", "ref_limited_denoised"]
@@ -260,18 +262,16 @@ EMBREE_TARGET = 0.75  # issue 18: vkpath's rays/s at least 0.75x the Embree refe
 
 
 def embree_verdict(e):
-    """Issue 18's target for a scene's "embree" result: "met" when the 95 % interval of the median
-    ratio lies at or above EMBREE_TARGET, "not met" when it lies below, "undecided" when it contains
-    it; without an interval (fewer than 6 pairs) no verdict: one pair says little on a machine whose
-    speed drifts."""
-    iv = e.get("ratio_interval")
-    if not iv:
-        return "no interval (%d pair%s)" % (e.get("pairs", 1), "" if e.get("pairs", 1) == 1 else "s")
-    if iv[0] >= EMBREE_TARGET:
-        return "met"
-    if iv[1] < EMBREE_TARGET:
-        return "not met"
-    return "undecided (the interval contains %.2fx)" % EMBREE_TARGET
+    """Issue 18's target for a scene's "embree" result: the 95 % interval of the median ratio against
+    at least EMBREE_TARGET (metrics.interval_verdict; no verdict below 6 pairs)."""
+    return metrics.interval_verdict(e.get("ratio_interval"), e.get("pairs", 1), EMBREE_TARGET, at_least=True)
+
+
+def pairs_cell(result):
+    """The "pairs (interval)" cell of a comparison run as pairs (Embree's, Cycles'): their number and
+    the median ratio's interval where there is one."""
+    iv = result.get("ratio_interval")
+    return "%d (%.2f-%.2fx)" % (result.get("pairs", 1), iv[0], iv[1]) if iv else "%d" % result.get("pairs", 1)
 
 
 def write_embree_md(L, scenes, sampler):
@@ -292,10 +292,6 @@ def write_embree_md(L, scenes, sampler):
     L.append("")
     columns = ["scene", "size", "threads", "vkpath rays/s", "Embree rays/s", "**ratio to Embree**", "pairs (interval)",
                "target", "rays/sample vkpath / Embree", "spp vkpath / Embree", "max abs(z)"]
-
-    def pairs_cell(e):
-        iv = e.get("ratio_interval")
-        return "%d (%.2f-%.2fx)" % (e.get("pairs", 1), iv[0], iv[1]) if iv else "%d" % e.get("pairs", 1)
 
     write_table(L, columns, scenes, "embree", 4, "refused", lambda s, e: (
         "| %s | %s | %d | %s | %s | **%.2fx** | %s | %s | %.3f / %.3f | %d / %d | %.1f |" % (
@@ -322,10 +318,6 @@ def write_cycles_md(L, scenes, sampler):
     L.append("")
     columns = ["scene", "size", "threads", "Cycles spp", "Cycles MSE", "Cycles s", "vkpath s", "**ratio**",
                "pairs (interval)", "target", "reference spp (MSE floor)", "mean diff. vkpath / Cycles", "Blender"]
-
-    def pairs_cell(c):
-        iv = c.get("ratio_interval")
-        return "%d (%.2f-%.2fx)" % (c.get("pairs", 1), iv[0], iv[1]) if iv else "%d" % c.get("pairs", 1)
 
     write_table(L, columns, scenes, "cycles", 7, "not measured", lambda s, c: (
         "| %s | %s | %d | %d | %.3g | %.2f | %s | **%s** | %s | %s | %d (%.2g) | %.2f%% / %.2f%% | %s |" % (
