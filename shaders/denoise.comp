@@ -1,11 +1,12 @@
 #version 460
-// The denoiser's kernel (host/render/denoiser.cpp): edge-avoiding a-trous wavelets guided by the
-// per-pixel variance, on demodulated radiance; the spatial filter of SVGF (Schied et al. 2017,
-// "Spatiotemporal Variance-Guided Filtering: Real-Time Reconstruction for Path-Traced Global
+// The denoiser's kernel (host/render/denoiser.cpp), on demodulated radiance guided by the per-pixel
+// variance and the feature images: by default one pass of non-local means with feature weights
+// (PASS 2, below); or edge-avoiding a-trous wavelets, the spatial filter of SVGF (Schied et al.
+// 2017, "Spatiotemporal Variance-Guided Filtering: Real-Time Reconstruction for Path-Traced Global
 // Illumination", sec. 4.4-4.5) built on the a-trous transform of Dammertz et al. 2010
 // ("Edge-Avoiding A-Trous Wavelet Transform for fast Global Illumination Filtering").
 //
-// Two passes, chosen by the specialization constant PASS (so neither carries the other's code:
+// Three passes, chosen by the specialization constant PASS (so none carries another's code:
 // on lavapipe a branch never skips, design.md "Every reachable branch runs"):
 //  PASS 0, demodulate: out = (color / a, var_L) with a = max(albedo, eps) per channel and var_L the
 //          variance of the demodulated luminance (channels taken as fully correlated: the standard
@@ -26,6 +27,14 @@
 //          of kernel regression; Fan and Gijbels 1996, "Local Polynomial Modelling", sec. 3.2.5).
 //          Its variance is e^T (sum w^2 var u u^T) e with e the first row of the inverse moment
 //          matrix and u = (1, tx, ty).
+//  PASS 2, non-local means (Rousselle, Knaus and Zwicker 2012, "Adaptive Rendering with Non-Local
+//          Means Filtering", sec. 4-5): every pixel of the (2 radius + 1)^2 window around the
+//          centre is a tap, weighted by how alike the 3x3 patches around the two are, in units of
+//          their variances, times the same normal and depth edge-stopping as PASS 1 (the feature
+//          weights of Rousselle, Manzi and Zwicker 2013), and a tap brighter than the centre by
+//          its excess in units of the centre's median-limited standard deviation (as PASS 1's
+//          brighter taps). The output is the same local linear fit as PASS 1's (taps in pixels),
+//          and its variance; it is the first level, the a-trous levels of step 2, 4, ... follow.
 //
 // Data: every buffer holds one vec4 per pixel of the band, row-major, `push.width` wide and
 // `push.rows` rows (row 0 = the band's top). Bindings:
@@ -54,15 +63,18 @@ layout(push_constant) uniform Push {
     uint width;       // pixels per row
     uint rows;        // rows of the band
     uint step;        // PASS 1: distance between taps, 2^level pixels
-    uint remodulate;  // PASS 1: 1 = multiply by the albedo (the last level)
-    float sigmaL;     // luminance: standard deviations of the centre that give weight 1/e
+    uint remodulate;  // PASS 1, 2: 1 = multiply by the albedo (the last level)
+    float sigmaL;     // PASS 1: luminance: standard deviations of the centre that give weight 1/e
     float sigmaN;     // normal: exponent of the cosine
     float sigmaZ;     // depth: multiples of the depth change the gradient predicts that give 1/e
     float albedoEps;  // the albedo's floor for demodulation
-    float ridge;      // PASS 1: >= 0: local linear fit with this ridge on the slopes; < 0: weighted mean
-    float normalNoise;  // PASS 1: > 0: the cosine's exponent is min(sigmaN, normalNoise / (theta_p^2 + theta_q^2))
+    float ridge;      // PASS 1, 2: >= 0: local linear fit with this ridge on the slopes; < 0: weighted mean
+    float normalNoise;  // PASS 1, 2: > 0: the cosine's exponent is min(sigmaN, normalNoise / (theta_p^2 + theta_q^2))
     float fireflyBound;  // PASS 0: > 0: a pixel's demodulated luminance is at most the largest of its
                          // 8 neighbours' plus fireflyBound of their standard deviations
+    uint radius;      // PASS 2: the window reaches this many pixels from the centre
+    float patchK;     // PASS 2: patch distances in units of patchK^2 x the two pixels' variances
+    float brighterSigma;  // PASS 2: a brighter tap's excess in units of this x the centre's standard deviation
 } push;
 
 const vec3 kLuma = vec3(0.2126, 0.7152, 0.0722);  // Rec. 709 luminance
@@ -133,15 +145,95 @@ float median9(inout float v[9]) {
     return v[4];
 }
 
-void atrousLevel(int x, int y, int i) {
+/// What the feature weights compare every tap with: the centre's guide, read once per output pixel.
+struct Centre {
+    bool hit;        // some sample of the pixel hit a surface (depth >= 0)
+    vec4 g;          // the guide: normal (0: none; length 1 / (1 + theta^2)), depth
+    float lenP;      // |normal|
+    float thetaP2;   // the variance of the normal's direction (rad^2)
+    vec2 grad;       // depth change per pixel along x and y
+    float zEps;      // depth tolerance: rounding on a flat face never stops the filter
+};
+
+Centre centreOf(int x, int y, int i) {
+    Centre c;
+    c.g = texelFetch(uGuide, i);
+    c.hit = c.g.w >= 0.0;
+    c.lenP = length(c.g.xyz);  // 0: no normal; else 1 / (1 + theta_p^2), its direction's variance (host)
+    c.thetaP2 = c.lenP > 0.0 ? 1.0 / c.lenP - 1.0 : 0.0;
+    c.grad = c.hit ? depthGradient(x, y, c.g.w) : vec2(0.0);
+    c.zEps = max(1e-3 * c.g.w, 1e-30);  // relative
+    return c;
+}
+
+/// Log of the feature part of a tap's weight (SVGF eq. 3-4), the tap `offset` pixels from the
+/// centre with guide gq: depth against the change the centre's gradient predicts; normals by the
+/// cosine of their directions, its exponent lowered where the two mean normals are noisy
+/// (DenoiseOptions::normalNoise); -1e30 where a hit meets a miss or a normal meets none (two hits
+/// without a normal, a mean normal of 0, are alike).
+float featureLogWeight(Centre c, vec2 offset, vec4 gq) {
+    if (c.hit != (gq.w >= 0.0)) return -1e30;  // a hit and a miss never mix
+    if (!c.hit) return 0.0;
+    float expected = abs(dot(c.grad, offset));
+    float logW = -abs(c.g.w - gq.w) / (push.sigmaZ * expected + c.zEps);
+    float lenQ = length(gq.xyz);
+    if (c.lenP > 0.0 && lenQ > 0.0) {
+        float theta2 = c.thetaP2 + (1.0 / lenQ - 1.0);
+        float sN = push.normalNoise > 0.0 ? min(push.sigmaN, push.normalNoise / max(theta2, 1e-30)) : push.sigmaN;
+        logW += sN * log(max(dot(c.g.xyz, gq.xyz) / (c.lenP * lenQ), 1e-30));
+    } else if (c.lenP > 0.0 || lenQ > 0.0) {
+        logW = -1e30;
+    }
+    return logW;
+}
+
+/// The sums of a pass's weighted taps: for the weighted mean and for the local linear fit, the
+/// plane b0 + b1 u1 + b2 u2 through the taps at offsets (u1, u2), and for its variance.
+struct Fit {
+    vec3 sum, sumX, sumY;                  // sum w q, sum w u1 q, sum w u2 q
+    float sumW, m01, m02, m11, m12, m22;   // moments of w u u^T, u = (1, u1, u2)
+    float sumVar, r01, r02, r11, r12, r22; // of w^2 var u u^T
+};
+
+Fit fitZero() {
+    return Fit(vec3(0.0), vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+}
+
+/// Adds tap q (demodulated rgb, variance of its luminance) with weight wq at offset (u1, u2).
+void fitAdd(inout Fit f, float wq, float u1, float u2, vec4 q) {
+    float wv = wq * wq * q.w;
+    f.sum += wq * q.rgb;
+    f.sumX += wq * u1 * q.rgb;
+    f.sumY += wq * u2 * q.rgb;
+    f.sumW += wq;
+    f.m01 += wq * u1; f.m02 += wq * u2; f.m11 += wq * u1 * u1; f.m12 += wq * u1 * u2; f.m22 += wq * u2 * u2;
+    f.sumVar += wv;
+    f.r01 += wv * u1; f.r02 += wv * u2; f.r11 += wv * u1 * u1; f.r12 += wv * u1 * u2; f.r22 += wv * u2 * u2;
+}
+
+/// The centre's value and its variance from the taps: their weighted mean (push.ridge < 0) or the
+/// plane's b0. f.sumW > 0: the centre always weighs > 0.
+vec4 fitSolve(Fit f) {
+    if (push.ridge < 0.0) return vec4(f.sum / f.sumW, f.sumVar / (f.sumW * f.sumW));
+    // The first row of the inverse of the symmetric moment matrix M + ridge sum(w) diag(0,1,1)
+    // (positive definite: sumW > 0), by cofactors.
+    float a11 = f.m11 + push.ridge * f.sumW, a22 = f.m22 + push.ridge * f.sumW;
+    float c0 = a11 * a22 - f.m12 * f.m12, c1 = f.m02 * f.m12 - f.m01 * a22, c2 = f.m01 * f.m12 - a11 * f.m02;
+    vec3 e = vec3(c0, c1, c2) / (f.sumW * c0 + f.m01 * c1 + f.m02 * c2);
+    vec3 rgb = max(e.x * f.sum + e.y * f.sumX + e.z * f.sumY, vec3(0.0));  // negative taps can undershoot 0
+    float var = e.x * e.x * f.sumVar + e.y * e.y * f.r11 + e.z * e.z * f.r22 +
+                2.0 * (e.x * e.y * f.r01 + e.x * e.z * f.r02 + e.y * e.z * f.r12);
+    return vec4(rgb, var);
+}
+
+/// The centre's variance for the luminance edge-stopping: x, its 3x3 blur (SVGF eq. 5: a single
+/// pixel's variance estimate is itself noisy); y, the smaller of that and the median of the nine
+/// variances (edge pixels repeated), the scale for taps brighter than the centre: one very bright
+/// neighbour (the sun seen through glass in a few pixels) dominates the blur and would let a dark
+/// pixel take its light in, a halo that relMSE weighs heavily; the median ignores up to four such
+/// neighbours.
+vec2 centreVariances(int x, int y) {
     const int w = int(push.width), h = int(push.rows);
-    // The centre's luminance scale: sigmaL x the standard deviation, its variance blurred 3x3
-    // (SVGF eq. 5: a single pixel's variance estimate is itself noisy). A tap brighter than the
-    // centre is judged by the smaller of that blurred variance and the median of the nine
-    // variances (edge pixels repeated): one very bright neighbour (the sun seen through glass in a
-    // few pixels) dominates the blur and would let a dark pixel take its light in, a halo that
-    // relMSE weighs heavily; the median ignores up to four such neighbours. Darker taps keep the
-    // blurred scale, so a bright outlier is still pulled towards its neighbours.
     float varBlur = 0.0, wBlur = 0.0;
     float v9[9];
     for (int dy = -1; dy <= 1; ++dy)
@@ -155,23 +247,23 @@ void atrousLevel(int x, int y, int i) {
             wBlur += k;
         }
     varBlur /= wBlur;
-    // A tiny floor keeps 0/0 out where the variance is 0: equal luminances weigh 1, others 0.
-    float lumScale = 1.0 / (push.sigmaL * sqrt(max(varBlur, 0.0)) + 1e-20);
-    float lumScaleBrighter = 1.0 / (push.sigmaL * sqrt(max(min(varBlur, median9(v9)), 0.0)) + 1e-20);
+    return vec2(varBlur, min(varBlur, median9(v9)));
+}
 
-    vec4 centre = texelFetch(uIllumIn, i);
-    vec4 g = texelFetch(uGuide, i);
-    bool hit = g.w >= 0.0;
-    float lenP = length(g.xyz);  // 0: no normal; else 1 / (1 + theta_p^2), its direction's variance (host)
-    float thetaP2 = lenP > 0.0 ? 1.0 / lenP - 1.0 : 0.0;
-    vec2 grad = hit ? depthGradient(x, y, g.w) : vec2(0.0);
-    float lumP = dot(kLuma, centre.rgb);
-    float zEps = max(1e-3 * g.w, 1e-30);  // relative: depth rounding on a flat face never stops the filter
+void atrousLevel(int x, int y, int i) {
+    const int w = int(push.width), h = int(push.rows);
+    // The centre's luminance scale: sigmaL x the standard deviation of its blurred variance; for a
+    // tap brighter than the centre, of the median-limited one. Darker taps keep the blurred scale,
+    // so a bright outlier is still pulled towards its neighbours. A tiny floor keeps 0/0 out where
+    // the variance is 0: equal luminances weigh 1, others 0.
+    vec2 v = centreVariances(x, y);
+    float lumScale = 1.0 / (push.sigmaL * sqrt(max(v.x, 0.0)) + 1e-20);
+    float lumScaleBrighter = 1.0 / (push.sigmaL * sqrt(max(v.y, 0.0)) + 1e-20);
 
+    Centre c = centreOf(x, y, i);
+    float lumP = dot(kLuma, texelFetch(uIllumIn, i).rgb);
     const float kB3[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-    vec3 sum = vec3(0.0), sumX = vec3(0.0), sumY = vec3(0.0);  // sum w q, sum w tx q, sum w ty q
-    float sumW = 0.0, m01 = 0.0, m02 = 0.0, m11 = 0.0, m12 = 0.0, m22 = 0.0;  // moments of w u u^T
-    float sumVar = 0.0, r01 = 0.0, r02 = 0.0, r11 = 0.0, r12 = 0.0, r22 = 0.0;  // of w^2 var u u^T
+    Fit f = fitZero();
     const int s = int(push.step);
     for (int ty = -2; ty <= 2; ++ty)
         for (int tx = -2; tx <= 2; ++tx) {
@@ -179,55 +271,72 @@ void atrousLevel(int x, int y, int i) {
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             int j = qy * w + qx;
             vec4 q = texelFetch(uIllumIn, j);
-            vec4 gq = texelFetch(uGuide, j);
-            // Log of the edge-stopping weight (SVGF eq. 2-4), one exp2 per tap.
+            // Log of the edge-stopping weight (SVGF eq. 2-5), one exp per tap.
             float lumQ = dot(kLuma, q.rgb);
-            float logW = -abs(lumP - lumQ) * (lumQ > lumP ? lumScaleBrighter : lumScale);
-            if (hit != (gq.w >= 0.0)) {
-                logW = -1e30;  // a hit and a miss never mix
-            } else if (hit) {
-                float expected = abs(dot(grad, vec2(float(tx * s), float(ty * s))));
-                logW -= abs(g.w - gq.w) / (push.sigmaZ * expected + zEps);
-                // Two hits without a normal (a mean normal of 0) are alike; one without is not.
-                // Two normals: the cosine of their directions, its exponent lowered where the two
-                // mean normals are noisy (DenoiseOptions::normalNoise).
-                float lenQ = length(gq.xyz);
-                if (lenP > 0.0 && lenQ > 0.0) {
-                    float theta2 = thetaP2 + (1.0 / lenQ - 1.0);
-                    float sN = push.normalNoise > 0.0 ? min(push.sigmaN, push.normalNoise / max(theta2, 1e-30)) : push.sigmaN;
-                    logW += sN * log(max(dot(g.xyz, gq.xyz) / (lenP * lenQ), 1e-30));
-                } else if (lenP > 0.0 || lenQ > 0.0) {
-                    logW = -1e30;
-                }
-            }
-            float wq = kB3[tx + 2] * kB3[ty + 2] * exp(logW);
-            float u1 = float(tx), u2 = float(ty), wv = wq * wq * q.w;
-            sum += wq * q.rgb;
-            sumX += wq * u1 * q.rgb;
-            sumY += wq * u2 * q.rgb;
-            sumW += wq;
-            m01 += wq * u1; m02 += wq * u2; m11 += wq * u1 * u1; m12 += wq * u1 * u2; m22 += wq * u2 * u2;
-            sumVar += wv;
-            r01 += wv * u1; r02 += wv * u2; r11 += wv * u1 * u1; r12 += wv * u1 * u2; r22 += wv * u2 * u2;
+            float logW = -abs(lumP - lumQ) * (lumQ > lumP ? lumScaleBrighter : lumScale) +
+                         featureLogWeight(c, vec2(float(tx * s), float(ty * s)), texelFetch(uGuide, j));
+            fitAdd(f, kB3[tx + 2] * kB3[ty + 2] * exp(logW), float(tx), float(ty), q);
         }
-    // sumW > 0: the centre's weight is kB3[2]^2 times its normal factor, which is > 0.
-    vec3 rgb;
-    float var;
-    if (push.ridge < 0.0) {
-        rgb = sum / sumW;
-        var = sumVar / (sumW * sumW);
-    } else {
-        // The first row of the inverse of the symmetric moment matrix M + ridge sum(w) diag(0,1,1)
-        // (positive definite: sumW > 0), by cofactors.
-        float a11 = m11 + push.ridge * sumW, a22 = m22 + push.ridge * sumW;
-        float c0 = a11 * a22 - m12 * m12, c1 = m02 * m12 - m01 * a22, c2 = m01 * m12 - a11 * m02;
-        vec3 e = vec3(c0, c1, c2) / (sumW * c0 + m01 * c1 + m02 * c2);
-        rgb = max(e.x * sum + e.y * sumX + e.z * sumY, vec3(0.0));  // negative taps can undershoot 0
-        var = e.x * e.x * sumVar + e.y * e.y * r11 + e.z * e.z * r22 +
-              2.0 * (e.x * e.y * r01 + e.x * e.z * r02 + e.y * e.z * r12);
+    vec4 result = fitSolve(f);
+    if (push.remodulate != 0u) result.rgb *= demodAlbedo(i);
+    illumOut[i] = result;
+}
+
+/// PASS 2's patch texel: (luminance, variance) of pixel (qx, qy) of the demodulated image, or
+/// (0, -1) outside the band.
+vec2 patchTexel(int qx, int qy) {
+    if (qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) return vec2(0.0, -1.0);
+    vec4 t = texelFetch(uIllumIn, qy * int(push.width) + qx);
+    return vec2(dot(kLuma, t.rgb), t.w);
+}
+
+/// One pixel pair of two patches (Rousselle et al. 2012, eq. 8 with alpha = 1): the squared
+/// difference of the luminances less what their variances explain, in units of
+/// patchK^2 (var_p + var_q); 0 where either pixel is outside the band.
+float pairDistance(vec2 p, vec2 q) {
+    if (p.y < 0.0 || q.y < 0.0) return 0.0;
+    return ((p.x - q.x) * (p.x - q.x) - (p.y + min(p.y, q.y))) / (1e-20 + push.patchK * push.patchK * (p.y + q.y));
+}
+
+void nonLocalMeans(int x, int y, int i) {
+    const int w = int(push.width), h = int(push.rows), r = int(push.radius);
+    Centre c = centreOf(x, y, i);
+    // A tap brighter than the centre also pays its excess in units of brighterSigma x the
+    // centre's median-limited standard deviation (centreVariances): the patches of a dark pixel
+    // beside a few very bright, very noisy ones (the sun seen through glass) are alike within
+    // those pixels' variance, and would let the dark pixel take their light in.
+    float lumP = dot(kLuma, texelFetch(uIllumIn, i).rgb);
+    float brighterScale = 1.0 / (push.brighterSigma * sqrt(max(centreVariances(x, y).y, 0.0)) + 1e-20);
+    // The centre's patch, p[(dy + 1) * 3 + dx + 1] for the pixel (x + dx, y + dy).
+    vec2 p[9];
+    for (int n = 0; n < 9; ++n) p[n] = patchTexel(x + n % 3 - 1, y + n / 3 - 1);
+    Fit f = fitZero();
+    for (int ty = -r; ty <= r; ++ty) {
+        int qy = y + ty;
+        // The tap's patch by columns, left (a), middle (b) and right (m), rows qy - 1 .. qy + 1;
+        // each tap to the right reads one new column.
+        vec2 a0 = patchTexel(x - r - 1, qy - 1), a1 = patchTexel(x - r - 1, qy), a2 = patchTexel(x - r - 1, qy + 1);
+        vec2 b0 = patchTexel(x - r, qy - 1), b1 = patchTexel(x - r, qy), b2 = patchTexel(x - r, qy + 1);
+        for (int tx = -r; tx <= r; ++tx) {
+            int qx = x + tx;
+            vec2 m0 = patchTexel(qx + 1, qy - 1), m1 = patchTexel(qx + 1, qy), m2 = patchTexel(qx + 1, qy + 1);
+            if (qx >= 0 && qy >= 0 && qx < w && qy < h) {
+                float d = (pairDistance(p[0], a0) + pairDistance(p[1], b0) + pairDistance(p[2], m0) +
+                           pairDistance(p[3], a1) + pairDistance(p[4], b1) + pairDistance(p[5], m1) +
+                           pairDistance(p[6], a2) + pairDistance(p[7], b2) + pairDistance(p[8], m2)) / 9.0;
+                int j = qy * w + qx;
+                vec4 q = texelFetch(uIllumIn, j);
+                float logW = -max(d, 0.0) - max(dot(kLuma, q.rgb) - lumP, 0.0) * brighterScale +
+                             featureLogWeight(c, vec2(float(tx), float(ty)), texelFetch(uGuide, j));
+                fitAdd(f, exp(logW), float(tx), float(ty), q);
+            }
+            a0 = b0; a1 = b1; a2 = b2;
+            b0 = m0; b1 = m1; b2 = m2;
+        }
     }
-    if (push.remodulate != 0u) rgb *= demodAlbedo(i);
-    illumOut[i] = vec4(rgb, var);
+    vec4 result = fitSolve(f);
+    if (push.remodulate != 0u) result.rgb *= demodAlbedo(i);
+    illumOut[i] = result;
 }
 
 void main() {
@@ -235,5 +344,6 @@ void main() {
     if (x >= int(push.width) || y >= int(push.rows)) return;
     int i = y * int(push.width) + x;
     if (PASS == 0u) demodulate(x, y, i);
-    else atrousLevel(x, y, i);
+    else if (PASS == 1u) atrousLevel(x, y, i);
+    else nonLocalMeans(x, y, i);
 }

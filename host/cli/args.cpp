@@ -111,6 +111,8 @@ render options:
                           beside every output, or --denoise-output FILE
   --denoise-output FILE   where the denoised image goes (with --denoise)
   --denoise-dumps         denoise every dump too: frame-<spp>.denoised.<ext> (with --denoise)
+  --denoise-filter F      nlm (default: non-local means, then one a-trous level) or atrous (the
+                          a-trous filter alone); docs/design.md "Denoiser"
   --samples-per-dispatch N  samples one dispatch adds per pixel, 1-64 (default: automatic, <= 32 on a
                             CPU device, <= 8 on a GPU)
   --pixels-per-invocation N  pixels one invocation takes in turn, 1-64 (default: automatic: on a
@@ -261,6 +263,12 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
             } else if (f == "--denoise") a.denoise = true;
             else if (f == "--denoise-output") a.session.denoiseOutput = fileValue(f);
             else if (f == "--denoise-dumps") a.session.denoiseDumps = true;
+            else if (f == "--denoise-filter") {
+                const std::string s = value(f);
+                if (s == "nlm") a.denoiseFilter = DenoiseFilter::NonLocalMeans;
+                else if (s == "atrous") a.denoiseFilter = DenoiseFilter::ATrous;
+                else usage("--denoise-filter must be nlm or atrous, got '" + s + "'");
+            }
             else if (f == "--samples-per-dispatch") a.render.samplesPerDispatch = parseUint(f, value(f), 1, 64);
             else if (f == "--pixels-per-invocation") a.render.pixelsPerInvocation = parseUint(f, value(f), 1, 64);
             else if (f == "--adaptive") a.render.adaptiveThreshold = parseDouble(f, value(f), 1e-6, 10);
@@ -316,8 +324,8 @@ CliArgs parseArgs(const std::vector<std::string>& args) {
         usage("--sample-range does not work with --adaptive: adaptive decisions need every earlier sample of a pixel");
     if (solidAngleMinGiven && a.render.lightSampling != LightSampling::Auto)
         usage("--solid-angle-min applies to --light-sampling auto only");
-    if (!a.denoise && (!a.session.denoiseOutput.empty() || a.session.denoiseDumps))
-        usage("--denoise-output and --denoise-dumps need --denoise");
+    if (!a.denoise && (!a.session.denoiseOutput.empty() || a.session.denoiseDumps || a.denoiseFilter))
+        usage("--denoise-output, --denoise-dumps and --denoise-filter need --denoise");
     if (a.session.denoiseDumps && !a.session.dumpEvery) usage("--denoise-dumps needs --dump-every N");
     // The kernel gathers the feature images the AOVs or the denoiser need.
     for (Aov x : a.session.aovs) a.render.aov = a.render.aov || aovNeedsKernel(x);

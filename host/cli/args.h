@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image_io.h"
+#include "render/denoiser.h"
 #include "render/render_options.h"
 #include "render/session.h"
 
@@ -52,6 +53,8 @@ struct CliArgs {
     std::vector<std::filesystem::path> parts;
     /// `--denoise`: write a denoised image beside the raw one (render/denoiser.h).
     bool denoise = false;
+    /// `--denoise-filter nlm|atrous`: the denoiser's filter (DenoiseOptions::filter).
+    std::optional<DenoiseFilter> denoiseFilter;
     /// `--cache-dir DIR`: the kernel cache's folder (core/disk_cache.h); an empty path: `--cache-dir
     /// none`, no cache; unset: defaultCacheDir() ($VKPATH_CACHE_DIR, $XDG_CACHE_HOME, $HOME).
     std::optional<std::filesystem::path> cacheDir;

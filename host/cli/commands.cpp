@@ -207,7 +207,7 @@ int runRender(const CliArgs& a, Clock::time_point processStart) {
     // --denoise: the denoiser's pipelines once, used at the end (and at dumps or log rows).
     std::unique_ptr<Denoiser> denoiser;
     if (a.denoise) {
-        denoiser = std::make_unique<Denoiser>(device);
+        denoiser = std::make_unique<Denoiser>(device, denoiseOptions(a.denoiseFilter));
         job.session.denoiser = denoiseHook(*denoiser);
     }
     t = Clock::now();

@@ -21,4 +21,10 @@ std::function<Image(const DenoiseRequest&)> denoiseHook(Denoiser& denoiser) {
     };
 }
 
+DenoiseOptions denoiseOptions(std::optional<DenoiseFilter> filter) {
+    DenoiseOptions o;
+    if (filter) o.filter = *filter;
+    return o;
+}
+
 }  // namespace vkp

@@ -4,6 +4,7 @@
 // added back, so lights' and the sky's edges stay exactly as rendered.
 #pragma once
 #include <functional>
+#include <optional>
 
 #include "render/denoiser.h"
 #include "render/session.h"
@@ -12,5 +13,8 @@ namespace vkp {
 
 /// The session's denoiser (SessionOptions::denoiser) running on `denoiser`, which must outlive it.
 std::function<Image(const DenoiseRequest&)> denoiseHook(Denoiser& denoiser);
+
+/// The denoiser's options for `--denoise-filter` (unset: the defaults).
+DenoiseOptions denoiseOptions(std::optional<DenoiseFilter> filter);
 
 }  // namespace vkp

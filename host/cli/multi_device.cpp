@@ -70,7 +70,7 @@ int renderOnDevices(const CliArgs& a, RenderJob& job, const GpuArrays& arrays, s
     // --denoise: on the first device, once the samples are merged.
     std::unique_ptr<Denoiser> denoiser;
     if (a.denoise) {
-        denoiser = std::make_unique<Denoiser>(*devices.front());
+        denoiser = std::make_unique<Denoiser>(*devices.front(), denoiseOptions(a.denoiseFilter));
         o.denoiser = denoiseHook(*denoiser);
     }
     const std::uint32_t end = o.spp;

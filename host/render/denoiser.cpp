@@ -1,6 +1,6 @@
 // The denoiser's host side: input checks, bands, packing to vec4 per pixel, the dispatches of
-// shaders/denoise.comp (demodulate, then one a-trous level per iteration, ping-ponging between two
-// buffers) and the read-back.
+// shaders/denoise.comp (demodulate, then one dispatch per level, ping-ponging between two buffers:
+// the non-local means pass or an a-trous level of step 1, then a-trous levels) and the read-back.
 #include "render/denoiser.h"
 
 #include <algorithm>
@@ -23,8 +23,10 @@ namespace {
 struct DenoisePush {
     std::uint32_t width, rows, step, remodulate;
     float sigmaL, sigmaN, sigmaZ, albedoEps, ridge, normalNoise, fireflyBound;
+    std::uint32_t radius;
+    float patchK, brighterSigma;
 };
-static_assert(sizeof(DenoisePush) == 44);
+static_assert(sizeof(DenoisePush) == 56);
 
 /// Bytes per pixel of every buffer: one vec4.
 constexpr std::uint64_t kBytesPerPixel = 16;
@@ -41,8 +43,14 @@ void checkImage(const Image* img, const char* name, std::uint32_t w, std::uint32
 }
 
 void checkOptions(const DenoiseOptions& o) {
-    if (o.iterations < 1 || o.iterations > 10)
-        throw std::invalid_argument("denoiser: iterations must be in 1..10, not " + std::to_string(o.iterations));
+    if (o.filter != DenoiseFilter::NonLocalMeans && o.filter != DenoiseFilter::ATrous)
+        throw std::invalid_argument("denoiser: unknown filter " + std::to_string(static_cast<std::uint32_t>(o.filter)));
+    if (o.iterations > 10)
+        throw std::invalid_argument("denoiser: iterations must be in 1..10 (0: the default), not " + std::to_string(o.iterations));
+    if (o.nlmRadius < 1 || o.nlmRadius > 15)
+        throw std::invalid_argument("denoiser: nlmRadius must be in 1..15, not " + std::to_string(o.nlmRadius));
+    if (!std::isfinite(o.nlmPatchK) || o.nlmPatchK <= 0.0f || !std::isfinite(o.nlmBrighterSigma) || o.nlmBrighterSigma <= 0.0f)
+        throw std::invalid_argument("denoiser: nlmPatchK and nlmBrighterSigma must be > 0");
     const auto positive = [](float v) { return std::isfinite(v) && v > 0.0f; };
     if (!positive(o.sigmaLuminance) || !positive(o.sigmaDepth) || !positive(o.albedoEpsilon) ||
         !std::isfinite(o.sigmaNormal) || o.sigmaNormal < 0.0f || !std::isfinite(o.localLinearRidge) ||
@@ -54,6 +62,17 @@ void checkOptions(const DenoiseOptions& o) {
 }  // namespace
 
 std::uint32_t filterRadius(std::uint32_t iterations) { return 2u * ((1u << iterations) - 1u) + 1u; }
+
+std::uint32_t levels(const DenoiseOptions& options) {
+    if (options.iterations) return options.iterations;
+    return options.filter == DenoiseFilter::NonLocalMeans ? 2u : 4u;
+}
+
+std::uint32_t filterRadius(const DenoiseOptions& options) {
+    const std::uint32_t n = levels(options);
+    if (options.filter != DenoiseFilter::NonLocalMeans) return filterRadius(n);
+    return options.nlmRadius + 2u + 2u * ((1u << n) - 2u);
+}
 
 std::vector<DenoiseBand> planDenoiseBands(std::uint32_t height, std::uint32_t maxRows, std::uint32_t halo) {
     if (height <= maxRows) return {DenoiseBand{0, height, 0, height}};
@@ -76,6 +95,7 @@ std::vector<DenoiseBand> planDenoiseBands(std::uint32_t height, std::uint32_t ma
 struct Denoiser::Impl {
     std::unique_ptr<ComputePipeline> demodulate;  ///< PASS 0: one descriptor set
     std::unique_ptr<ComputePipeline> atrous;      ///< PASS 1: set 0 reads ping, writes pong; set 1 the reverse
+    std::unique_ptr<ComputePipeline> nlm;         ///< PASS 2: reads ping, writes pong
     std::uint64_t capacity = 0;                   ///< pixels every buffer holds
     std::unique_ptr<GpuBuffer> in[4];             ///< color, variance, albedo, guide
     std::unique_ptr<GpuBuffer> illum[2];          ///< ping, pong
@@ -93,6 +113,7 @@ struct Denoiser::Impl {
         for (auto& b : illum) views.push_back(b->texelView(vk::Format::eR32G32B32A32Sfloat));
         for (std::uint32_t k = 0; k < 4; ++k) {
             demodulate->bindTexelView(k, *views[k]);
+            nlm->bindTexelView(k, *views[k]);
             for (std::uint32_t set = 0; set < 2; ++set) atrous->bindTexelView(k, *views[k], set);
         }
         // Every binding of every set is valid; a dispatch never reads the buffer it writes.
@@ -102,6 +123,8 @@ struct Denoiser::Impl {
         atrous->bindBuffer(kIllumOut, illum[1]->buffer(), 0);
         atrous->bindTexelView(kIllumIn, *views[5], 1);
         atrous->bindBuffer(kIllumOut, illum[0]->buffer(), 1);
+        nlm->bindTexelView(kIllumIn, *views[4]);
+        nlm->bindBuffer(kIllumOut, illum[1]->buffer());
         capacity = pixels;
     }
 };
@@ -116,6 +139,8 @@ Denoiser::Denoiser(VulkanDevice& device, const DenoiseOptions& options)
     desc.pushConstantBytes = sizeof(DenoisePush);
     desc.specConstants = {0};
     impl_->demodulate = std::make_unique<ComputePipeline>(device, desc);
+    desc.specConstants = {2};
+    impl_->nlm = std::make_unique<ComputePipeline>(device, desc);
     desc.specConstants = {1};
     desc.descriptorSets = 2;
     impl_->atrous = std::make_unique<ComputePipeline>(device, desc);
@@ -151,7 +176,7 @@ Image Denoiser::run(const DenoiseInput& input) {
     maxPixels = std::min<std::uint64_t>(maxPixels, std::numeric_limits<std::int32_t>::max());
     std::uint64_t maxRows = std::min<std::uint64_t>(maxPixels / w, 8ull * info.maxComputeWorkGroupCount[1]);
     if (options_.maxBandRows) maxRows = std::min<std::uint64_t>(maxRows, options_.maxBandRows);
-    const std::uint32_t halo = filterRadius(options_.iterations);
+    const std::uint32_t halo = filterRadius(options_), levelCount = levels(options_);
     if (h > maxRows && maxRows <= 2ull * halo)
         throw DeviceError("denoiser: an image " + std::to_string(w) + " pixels wide fits only " + std::to_string(maxRows) +
                           " rows in one buffer (maxStorageBufferRange " + std::to_string(info.maxStorageBufferRange) +
@@ -200,18 +225,22 @@ Image Denoiser::run(const DenoiseInput& input) {
         dev_->submitAndWait([&](vk::raii::CommandBuffer& cmd) {
             DenoisePush push{w, rows, 0, 0, options_.sigmaLuminance, options_.sigmaNormal, options_.sigmaDepth,
                              options_.albedoEpsilon, options_.localLinearRidge, options_.normalNoise,
-                             options_.fireflyBound};
+                             options_.fireflyBound, options_.nlmRadius, options_.nlmPatchK,
+                             options_.nlmBrighterSigma};
             impl_->demodulate->recordDispatch8x8(cmd, w, rows, &push, sizeof push);
-            for (std::uint32_t level = 0; level < options_.iterations; ++level) {
+            for (std::uint32_t level = 0; level < levelCount; ++level) {
                 push.step = 1u << level;
-                push.remodulate = level + 1 == options_.iterations ? 1u : 0u;
+                push.remodulate = level + 1 == levelCount ? 1u : 0u;
                 // Level 0 reads ping (written by the demodulation) and writes pong (set 0), then alternately.
-                impl_->atrous->recordDispatch(cmd, (w + 7) / 8, (rows + 7) / 8, &push, sizeof push, level % 2);
+                if (level == 0 && options_.filter == DenoiseFilter::NonLocalMeans)
+                    impl_->nlm->recordDispatch8x8(cmd, w, rows, &push, sizeof push);
+                else
+                    impl_->atrous->recordDispatch(cmd, (w + 7) / 8, (rows + 7) / 8, &push, sizeof push, level % 2);
             }
         });
         dev_->instance().throwIfValidationMessages("while denoising");
         // The last level wrote pong (set 0) after an odd number of levels, ping after an even one.
-        GpuBuffer& result = *impl_->illum[options_.iterations % 2 == 1 ? 1 : 0];
+        GpuBuffer& result = *impl_->illum[levelCount % 2 == 1 ? 1 : 0];
         result.download(packed.data(), bytes);
         for (std::uint32_t y = band.y0; y < band.y1; ++y)
             for (std::uint32_t x = 0; x < w; ++x) {

@@ -31,15 +31,42 @@ struct DenoiseInput {
     const std::vector<float>* samples = nullptr;
 };
 
-/// The filter's parameters; the defaults are SVGF's (Schied et al. 2017, sec. 4.5), measured on
-/// the synthetic scenes of tests/gpu/test_gpu_denoise.cpp (docs/design.md "Denoiser").
+/// Which filter the denoiser runs (docs/design.md "Denoiser").
+enum class DenoiseFilter : std::uint32_t {
+    /// A first level of non-local means (Rousselle, Knaus and Zwicker 2012): every pixel of a
+    /// (2 nlmRadius + 1)^2 window weighted by how alike the 3x3 patches around it and the centre
+    /// are, times the normal and depth weights below, as a local linear fit; then a-trous levels of
+    /// step 2, 4, ... (below).
+    NonLocalMeans,
+    /// SVGF's edge-avoiding a-trous wavelets (Schied et al. 2017) alone: levels of step 1, 2, 4, ...
+    ATrous,
+};
+
+/// The filter's parameters, each measured on the benchmark suite's scenes (docs/design.md
+/// "Denoiser", docs/performance.md "Denoiser").
 struct DenoiseOptions {
-    /// A-trous levels (1..10): level i has taps 2^i pixels apart; the filter reaches
-    /// filterRadius(iterations) = 2 (2^iterations - 1) pixels. 4, not SVGF's 5: the fifth level
-    /// (taps 16 pixels apart) added more bias than it removed noise on the suite's scenes
-    /// (docs/performance.md "sigmaNormal and the number of levels").
-    std::uint32_t iterations = 4;
-    /// Luminance edge-stopping: a tap whose demodulated luminance differs from the centre's by
+    /// Non-local means first by default: measured on the suite's scenes it leaves 7-20 % less error
+    /// than the a-trous filter alone on all but env-sky, where both leave at most 3.2 % of the raw
+    /// error (docs/performance.md "Non-local means as the first level").
+    DenoiseFilter filter = DenoiseFilter::NonLocalMeans;
+    /// NonLocalMeans: the window reaches this many pixels from the centre (1..15).
+    std::uint32_t nlmRadius = 4;
+    /// NonLocalMeans: a patch pair's distance is in units of nlmPatchK^2 x the sum of the two
+    /// pixels' variances (Rousselle et al. 2012's k); larger blurs more.
+    float nlmPatchK = 0.6f;
+    /// NonLocalMeans: a tap brighter than the centre also weighs exp(-excess / (nlmBrighterSigma x
+    /// the centre's median-limited standard deviation)): without it a dark pixel beside a few very
+    /// bright, very noisy ones (the sun seen through glass) finds their patches alike within their
+    /// variance and takes their light in, a halo.
+    float nlmBrighterSigma = 16.0f;
+    /// Levels (1..10; 0: the filter's measured default, levels(options)): level 0 is the
+    /// non-local means pass (NonLocalMeans) or an a-trous level of step 1, level i > 0 an a-trous
+    /// level whose taps are 2^i pixels apart. Defaults: the a-trous filter alone 4, not SVGF's 5
+    /// (the fifth level, taps 16 pixels apart, added more bias than it removed noise on the
+    /// suite's scenes: docs/performance.md "sigmaNormal and the number of levels"); after non-local
+    /// means 1 more (docs/performance.md "Non-local means as the first level").
+    std::uint32_t iterations = 0;
+    /// A-trous levels: luminance edge-stopping: a tap whose demodulated luminance differs from the centre's by
     /// sigmaLuminance standard deviations (of the centre's mean, blurred 3x3) weighs 1/e. Larger
     /// blurs more; as the variance goes to 0 every differing tap goes to weight 0.
     float sigmaLuminance = 4.0f;
@@ -101,6 +128,13 @@ struct DenoiseBand {
 /// sum over levels of 2 x 2^level (the 3x3 variance blur and the depth gradient reach 1 pixel,
 /// within that), plus 1 for the firefly bound's 3x3 neighbours.
 std::uint32_t filterRadius(std::uint32_t iterations);
+
+/// The levels `options` ask for: DenoiseOptions::iterations, or the filter's default where that is 0.
+std::uint32_t levels(const DenoiseOptions& options);
+
+/// The same for the filter `options` choose: for non-local means the window's radius, plus 1 for
+/// the tap's 3x3 patch and 1 for the firefly bound, plus 2 x 2^i for each a-trous level i > 0.
+std::uint32_t filterRadius(const DenoiseOptions& options);
 
 /// The bands of a height-row image when one band may load at most maxRows rows: one band if the
 /// image fits, else bands of maxRows - 2 halo output rows (the last shorter). Throws

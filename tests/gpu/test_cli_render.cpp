@@ -97,7 +97,8 @@ TEST_F(CliRender, FeatureImagesAreLayersOfTheExrAndFilesBesideThePng) {
 // image is closer to a converged one than the raw image at the same spp.
 TEST_F(CliRender, DenoiseWritesBesideTheRawImageAndNeverOverIt) {
     VKP_REQUIRE_DEVICE(dev);
-    for (const char* f : {"d.pfm", "d.denoised.pfm", "plain.pfm", "elsewhere.exr", "ref.pfm", "d.csv"}) std::filesystem::remove(dir / f);
+    for (const char* f : {"d.pfm", "d.denoised.pfm", "plain.pfm", "elsewhere.exr", "ref.pfm", "d.csv", "a.pfm", "a.denoised.pfm"})
+        std::filesystem::remove(dir / f);
     const std::vector<std::string> common = {"render", scene("cornell-classic.json"), "--width", "48", "--height", "48", "--quiet"};
     auto with = [&](std::vector<std::string> more) {
         std::vector<std::string> args = common;
@@ -119,6 +120,11 @@ TEST_F(CliRender, DenoiseWritesBesideTheRawImageAndNeverOverIt) {
         return e / double(x.rgb.size());
     };
     EXPECT_LT(relmse(den), 0.5 * relmse(raw)) << relmse(den) << " vs " << relmse(raw);
+    // --denoise-filter atrous: the a-trous filter alone, another image, also far closer than raw.
+    ASSERT_EQ(with({"--spp", "16", "-o", "a.pfm", "--denoise", "--denoise-filter", "atrous"}).exitCode, 0);
+    const Image atrous = readImage(dir / "a.denoised.pfm");
+    EXPECT_LT(relmse(atrous), 0.5 * relmse(raw)) << relmse(atrous) << " vs " << relmse(raw);
+    EXPECT_NE(atrous.rgb, den.rgb);
     std::ifstream log(dir / "d.csv");
     std::string header, row, last;
     std::getline(log, header);

@@ -144,6 +144,14 @@ TEST(CliArgs, FeatureImagesAndDenoising) {
     EXPECT_NE(errorOf({"render", "s.json", "--aov", "albedo,shadow"}).find("--aov: unknown AOV 'shadow' (known: albedo, normal"),
               std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--denoise-output", "d.png"}).find("need --denoise"), std::string::npos);
+    EXPECT_FALSE(a.denoiseFilter);  // the Denoiser's default
+    a = parse({"render", "s.json", "--denoise", "--denoise-filter", "atrous"});
+    EXPECT_EQ(a.denoiseFilter, DenoiseFilter::ATrous);
+    a = parse({"render", "s.json", "--denoise", "--denoise-filter", "nlm"});
+    EXPECT_EQ(a.denoiseFilter, DenoiseFilter::NonLocalMeans);
+    EXPECT_NE(errorOf({"render", "s.json", "--denoise", "--denoise-filter", "svgf"}).find("--denoise-filter must be nlm or atrous, got 'svgf'"),
+              std::string::npos);
+    EXPECT_NE(errorOf({"render", "s.json", "--denoise-filter", "nlm"}).find("need --denoise"), std::string::npos);
     EXPECT_NE(errorOf({"render", "s.json", "--denoise", "--denoise-dumps"}).find("--denoise-dumps needs --dump-every"), std::string::npos);
     a = parse({"merge", "a.exr", "-o", "x.png", "--aov", "albedo,spp"});  // merge writes the parts' feature images
     ASSERT_EQ(a.session.aovs.size(), 2u);
