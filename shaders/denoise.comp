@@ -43,7 +43,7 @@
 //  2 albedo    (rgb, -)                     uniform texel buffer RGBA32F
 //  3 guide     (normal or 0, depth)         uniform texel buffer RGBA32F; depth < 0: nothing hit; the
 //                                           normal's length is 1 / (1 + its direction's variance)
-//  4 illumIn   (demodulated rgb, var_L)     uniform texel buffer RGBA32F (PASS 1)
+//  4 illumIn   (demodulated rgb, var_L)     uniform texel buffer RGBA32F (PASS 1, 2)
 //  5 illumOut  same layout                  storage buffer
 // Taps outside the band are skipped and the weights renormalised, so a band's rows farther than
 // the filter's radius from its ends are the same bits as those of a single pass.
