@@ -282,13 +282,18 @@ void atrousLevel(int x, int y, int i) {
     illumOut[i] = result;
 }
 
-/// PASS 2's patch texel: (luminance, variance) of pixel (qx, qy) of the demodulated image, or
-/// (0, -1) outside the band.
-vec2 patchTexel(int qx, int qy) {
-    if (qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) return vec2(0.0, -1.0);
-    vec4 t = texelFetch(uIllumIn, qy * int(push.width) + qx);
-    return vec2(dot(kLuma, t.rgb), t.w);
+/// PASS 2's texel of pixel (qx, qy) of the demodulated image, (rgb, variance); variance -1
+/// outside the band.
+vec4 illumTexel(int qx, int qy) {
+    if (qx < 0 || qy < 0 || qx >= int(push.width) || qy >= int(push.rows)) return vec4(0.0, 0.0, 0.0, -1.0);
+    return texelFetch(uIllumIn, qy * int(push.width) + qx);
 }
+
+/// A texel as a patch pixel: (luminance, variance).
+vec2 lumVar(vec4 t) { return vec2(dot(kLuma, t.rgb), t.w); }
+
+/// PASS 2's patch pixel (qx, qy): (luminance, variance), or (0, -1) outside the band.
+vec2 patchTexel(int qx, int qy) { return lumVar(illumTexel(qx, qy)); }
 
 /// One pixel pair of two patches (Rousselle et al. 2012, eq. 8 with alpha = 1): the squared
 /// difference of the luminances less what their variances explain, in units of
@@ -301,37 +306,38 @@ float pairDistance(vec2 p, vec2 q) {
 void nonLocalMeans(int x, int y, int i) {
     const int w = int(push.width), h = int(push.rows), r = int(push.radius);
     Centre c = centreOf(x, y, i);
+    // The centre's patch, p[(dy + 1) * 3 + dx + 1] for the pixel (x + dx, y + dy); p[4] the centre.
+    vec2 p[9];
+    for (int n = 0; n < 9; ++n) p[n] = patchTexel(x + n % 3 - 1, y + n / 3 - 1);
     // A tap brighter than the centre also pays its excess in units of brighterSigma x the
     // centre's median-limited standard deviation (centreVariances): the patches of a dark pixel
     // beside a few very bright, very noisy ones (the sun seen through glass) are alike within
     // those pixels' variance, and would let the dark pixel take their light in.
-    float lumP = dot(kLuma, texelFetch(uIllumIn, i).rgb);
     float brighterScale = 1.0 / (push.brighterSigma * sqrt(max(centreVariances(x, y).y, 0.0)) + 1e-20);
-    // The centre's patch, p[(dy + 1) * 3 + dx + 1] for the pixel (x + dx, y + dy).
-    vec2 p[9];
-    for (int n = 0; n < 9; ++n) p[n] = patchTexel(x + n % 3 - 1, y + n / 3 - 1);
     Fit f = fitZero();
     for (int ty = -r; ty <= r; ++ty) {
         int qy = y + ty;
         // The tap's patch by columns, left (a), middle (b) and right (m), rows qy - 1 .. qy + 1;
-        // each tap to the right reads one new column.
+        // each tap to the right reads one new column. The middle row's texel is kept whole
+        // (bq, mq): the middle column's is the tap itself.
         vec2 a0 = patchTexel(x - r - 1, qy - 1), a1 = patchTexel(x - r - 1, qy), a2 = patchTexel(x - r - 1, qy + 1);
-        vec2 b0 = patchTexel(x - r, qy - 1), b1 = patchTexel(x - r, qy), b2 = patchTexel(x - r, qy + 1);
+        vec4 bq = illumTexel(x - r, qy);
+        vec2 b0 = patchTexel(x - r, qy - 1), b1 = lumVar(bq), b2 = patchTexel(x - r, qy + 1);
         for (int tx = -r; tx <= r; ++tx) {
             int qx = x + tx;
-            vec2 m0 = patchTexel(qx + 1, qy - 1), m1 = patchTexel(qx + 1, qy), m2 = patchTexel(qx + 1, qy + 1);
+            vec4 mq = illumTexel(qx + 1, qy);
+            vec2 m0 = patchTexel(qx + 1, qy - 1), m1 = lumVar(mq), m2 = patchTexel(qx + 1, qy + 1);
             if (qx >= 0 && qy >= 0 && qx < w && qy < h) {
                 float d = (pairDistance(p[0], a0) + pairDistance(p[1], b0) + pairDistance(p[2], m0) +
                            pairDistance(p[3], a1) + pairDistance(p[4], b1) + pairDistance(p[5], m1) +
                            pairDistance(p[6], a2) + pairDistance(p[7], b2) + pairDistance(p[8], m2)) / 9.0;
-                int j = qy * w + qx;
-                vec4 q = texelFetch(uIllumIn, j);
-                float logW = -max(d, 0.0) - max(dot(kLuma, q.rgb) - lumP, 0.0) * brighterScale +
-                             featureLogWeight(c, vec2(float(tx), float(ty)), texelFetch(uGuide, j));
-                fitAdd(f, exp(logW), float(tx), float(ty), q);
+                float logW = -max(d, 0.0) - max(b1.x - p[4].x, 0.0) * brighterScale +
+                             featureLogWeight(c, vec2(float(tx), float(ty)), texelFetch(uGuide, qy * w + qx));
+                fitAdd(f, exp(logW), float(tx), float(ty), bq);
             }
             a0 = b0; a1 = b1; a2 = b2;
             b0 = m0; b1 = m1; b2 = m2;
+            bq = mq;
         }
     }
     vec4 result = fitSolve(f);

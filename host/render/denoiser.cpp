@@ -95,7 +95,7 @@ std::vector<DenoiseBand> planDenoiseBands(std::uint32_t height, std::uint32_t ma
 struct Denoiser::Impl {
     std::unique_ptr<ComputePipeline> demodulate;  ///< PASS 0: one descriptor set
     std::unique_ptr<ComputePipeline> atrous;      ///< PASS 1: set 0 reads ping, writes pong; set 1 the reverse
-    std::unique_ptr<ComputePipeline> nlm;         ///< PASS 2: reads ping, writes pong
+    std::unique_ptr<ComputePipeline> nlm;         ///< PASS 2: reads ping, writes pong (null: the a-trous filter alone)
     std::uint64_t capacity = 0;                   ///< pixels every buffer holds
     std::unique_ptr<GpuBuffer> in[4];             ///< color, variance, albedo, guide
     std::unique_ptr<GpuBuffer> illum[2];          ///< ping, pong
@@ -113,7 +113,7 @@ struct Denoiser::Impl {
         for (auto& b : illum) views.push_back(b->texelView(vk::Format::eR32G32B32A32Sfloat));
         for (std::uint32_t k = 0; k < 4; ++k) {
             demodulate->bindTexelView(k, *views[k]);
-            nlm->bindTexelView(k, *views[k]);
+            if (nlm) nlm->bindTexelView(k, *views[k]);
             for (std::uint32_t set = 0; set < 2; ++set) atrous->bindTexelView(k, *views[k], set);
         }
         // Every binding of every set is valid; a dispatch never reads the buffer it writes.
@@ -123,8 +123,10 @@ struct Denoiser::Impl {
         atrous->bindBuffer(kIllumOut, illum[1]->buffer(), 0);
         atrous->bindTexelView(kIllumIn, *views[5], 1);
         atrous->bindBuffer(kIllumOut, illum[0]->buffer(), 1);
-        nlm->bindTexelView(kIllumIn, *views[4]);
-        nlm->bindBuffer(kIllumOut, illum[1]->buffer());
+        if (nlm) {
+            nlm->bindTexelView(kIllumIn, *views[4]);
+            nlm->bindBuffer(kIllumOut, illum[1]->buffer());
+        }
         capacity = pixels;
     }
 };
@@ -139,8 +141,10 @@ Denoiser::Denoiser(VulkanDevice& device, const DenoiseOptions& options)
     desc.pushConstantBytes = sizeof(DenoisePush);
     desc.specConstants = {0};
     impl_->demodulate = std::make_unique<ComputePipeline>(device, desc);
-    desc.specConstants = {2};
-    impl_->nlm = std::make_unique<ComputePipeline>(device, desc);
+    if (options_.filter == DenoiseFilter::NonLocalMeans) {  // only the pipelines the filter runs
+        desc.specConstants = {2};
+        impl_->nlm = std::make_unique<ComputePipeline>(device, desc);
+    }
     desc.specConstants = {1};
     desc.descriptorSets = 2;
     impl_->atrous = std::make_unique<ComputePipeline>(device, desc);
@@ -232,7 +236,7 @@ Image Denoiser::run(const DenoiseInput& input) {
                 push.step = 1u << level;
                 push.remodulate = level + 1 == levelCount ? 1u : 0u;
                 // Level 0 reads ping (written by the demodulation) and writes pong (set 0), then alternately.
-                if (level == 0 && options_.filter == DenoiseFilter::NonLocalMeans)
+                if (level == 0 && impl_->nlm)
                     impl_->nlm->recordDispatch8x8(cmd, w, rows, &push, sizeof push);
                 else
                     impl_->atrous->recordDispatch(cmd, (w + 7) / 8, (rows + 7) / 8, &push, sizeof push, level % 2);
